@@ -1,0 +1,62 @@
+//! Errors carried as values up to `main`, which prints them once and picks the exit code.
+
+use std::fmt;
+use std::path::PathBuf;
+
+/// Every way a lanecast run can fail. `exit_code` maps each to the documented code:
+/// 2 for bad usage or bad input, 1 for everything else (I/O, failed comparisons).
+#[derive(Debug)]
+pub enum Error {
+    /// A bad command-line argument; the message names the argument.
+    Usage(String),
+    /// Bad content in an input file, at a 1-based line and column (column 0: whole line).
+    Input { file: PathBuf, line: usize, col: usize, msg: String },
+    /// An input file as a whole is unusable (unreadable, not UTF-8, no camera line...).
+    InputFile { file: PathBuf, msg: String },
+    /// Reading or writing a file failed.
+    Io { path: PathBuf, action: &'static str, source: std::io::Error },
+    /// Anything else that is not the user's input: encoder failures, failed comparisons.
+    Failed(String),
+}
+
+impl Error {
+    pub fn exit_code(&self) -> i32 {
+        match self {
+            Error::Usage(_) | Error::Input { .. } | Error::InputFile { .. } => 2,
+            Error::Io { .. } | Error::Failed(_) => 1,
+        }
+    }
+
+    pub fn usage(msg: impl Into<String>) -> Error {
+        Error::Usage(msg.into())
+    }
+
+    pub fn input(file: impl Into<PathBuf>, line: usize, col: usize, msg: impl Into<String>) -> Error {
+        Error::Input { file: file.into(), line, col, msg: msg.into() }
+    }
+
+    pub fn io(path: impl Into<PathBuf>, action: &'static str, source: std::io::Error) -> Error {
+        Error::Io { path: path.into(), action, source }
+    }
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Error::Usage(m) => write!(f, "{m}"),
+            Error::Input { file, line, col, msg } if *col > 0 => {
+                write!(f, "{}:{line}:{col}: {msg}", file.display())
+            }
+            Error::Input { file, line, msg, .. } => write!(f, "{}:{line}: {msg}", file.display()),
+            Error::InputFile { file, msg } => write!(f, "{}: {msg}", file.display()),
+            Error::Io { path, action, source } => {
+                write!(f, "{}: cannot {action}: {source}", path.display())
+            }
+            Error::Failed(m) => write!(f, "{m}"),
+        }
+    }
+}
+
+impl std::error::Error for Error {}
+
+pub type Result<T, E = Error> = std::result::Result<T, E>;

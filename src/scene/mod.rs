@@ -1,0 +1,58 @@
+//! Scenes as parsed from `.sc` files: one camera and a list of primitives in file order.
+//!
+//! A primitive's id is its index in `Scene::shapes`: its 0-based position among the primitive
+//! lines of the file, whatever its type. Parsing (`parse.rs`) turns text into this form;
+//! validation (`validate.rs`) holds the geometric rules and their tolerances.
+
+pub mod parse;
+pub mod validate;
+
+use glam::DVec3;
+use std::path::PathBuf;
+
+pub use parse::{load_scene, parse_scene};
+
+/// The `camera` statement, unvalidated values as written (validated by `validate::camera`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CameraSpec {
+    pub eye: DVec3,
+    pub look: DVec3,
+    pub up: DVec3,
+    /// Horizontal field of view in degrees, when the scene gives one.
+    pub fov_deg: Option<f64>,
+}
+
+/// One primitive, in the scene's own f64 coordinates.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Shape {
+    Sphere { center: DVec3, radius: f64 },
+    Triangle([DVec3; 3]),
+    /// A planar convex quad, vertices in perimeter order: the union of (A,B,C) and (A,C,D).
+    Quad([DVec3; 4]),
+}
+
+/// A parsed, validated scene.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene {
+    /// Where the scene came from, for messages.
+    pub source: PathBuf,
+    pub camera: CameraSpec,
+    pub shapes: Vec<Shape>,
+    /// 1-based source line of each shape, for messages (same length as `shapes`).
+    pub lines: Vec<usize>,
+}
+
+impl Scene {
+    /// How many primitives of each type: (spheres, triangles, quads).
+    pub fn counts(&self) -> (usize, usize, usize) {
+        let mut n = (0, 0, 0);
+        for s in &self.shapes {
+            match s {
+                Shape::Sphere { .. } => n.0 += 1,
+                Shape::Triangle(_) => n.1 += 1,
+                Shape::Quad(_) => n.2 += 1,
+            }
+        }
+        n
+    }
+}
