@@ -1,0 +1,376 @@
+//! The command line: raw arguments to validated settings in one step.
+//!
+//! The original assignment's single-dash long options (`-size`, `-fov`, `-cm`, `-cv`, `-time`)
+//! are rewritten to their GNU long forms by [`SINGLE_DASH`] before clap sees them: clap has no
+//! single-dash long options. Only whole tokens are rewritten, so values are never touched.
+
+use crate::error::{Error, Result};
+use crate::shade::{ColorMode, Variation};
+use clap::{Args, Parser, Subcommand, ValueEnum};
+use std::ffi::OsString;
+use std::path::PathBuf;
+
+/// The original's single-dash long options and their GNU long forms.
+pub const SINGLE_DASH: [(&str, &str); 5] = [
+    ("-size", "--size"),
+    ("-fov", "--fov"),
+    ("-cm", "--color-mode"),
+    ("-cv", "--color-variation"),
+    ("-time", "--time"),
+];
+
+/// Rewrites every token listed in [`SINGLE_DASH`] to its long form.
+pub fn translate(args: impl IntoIterator<Item = OsString>) -> Vec<OsString> {
+    args.into_iter()
+        .map(
+            |a| match SINGLE_DASH.iter().find(|(short, _)| a == *short) {
+                Some((_, long)) => OsString::from(long),
+                None => a,
+            },
+        )
+        .collect()
+}
+
+const EXAMPLES: &str = "\
+Examples:
+  lanecast -i scenes/scene1.sc                      writes scenes/scene1.png (640x480)
+  lanecast -i scene1.sc -o scene1.png -size 800x600 -fov 80
+  lanecast -i scene1.sc -cm ordered -cv log -time
+  lanecast -i scene1.sc --kernel scalar --threads 1 --ids ids.npy --depth depth.npy
+  lanecast compare -i scene1.sc -size 1920x1080 -o diff.png
+
+Exit codes: 0 success, 2 bad usage or bad input (message names the file and line, or the
+argument), 1 anything else (I/O errors, a failed comparison).";
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "lanecast",
+    version,
+    about = "Ray-casts a .sc scene (camera, spheres, triangles, quads) to an image: \
+             8-wide SIMD packets, with a scalar f64 oracle.",
+    after_help = EXAMPLES,
+    subcommand_negates_reqs = true,
+    args_conflicts_with_subcommands = true
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Sub>,
+    #[command(flatten)]
+    render: RenderArgs,
+}
+
+#[derive(Subcommand, Debug)]
+enum Sub {
+    /// Renders with the packet kernel and the f64 scalar oracle and reports where they differ.
+    #[command(
+        after_help = "Example:\n  lanecast compare -i scenes/scene4.sc -size 1920x1080 -o diff.png"
+    )]
+    Compare(CompareArgs),
+}
+
+#[derive(Args, Debug)]
+struct View {
+    /// Scene file (.sc).
+    #[arg(short = 'i', long = "input", value_name = "SCENE.sc", required = true)]
+    input: Option<PathBuf>,
+    /// Image size WIDTHxHEIGHT, e.g. 800x600 (single-dash form: -size).
+    #[arg(long, value_name = "WxH", default_value = "640x480")]
+    size: String,
+    /// Horizontal field of view in degrees, 0 < FOV < 180 [default: the scene's, else 60]
+    /// (single-dash form: -fov).
+    #[arg(long, value_name = "DEGREES", allow_negative_numbers = true)]
+    fov: Option<f64>,
+    /// Worker threads [default: all cores].
+    #[arg(long, value_name = "N")]
+    threads: Option<usize>,
+}
+
+#[derive(Args, Debug)]
+struct RenderArgs {
+    #[command(flatten)]
+    view: View,
+    /// Output image, .png or .bmp [default: the input path with extension .png].
+    #[arg(short = 'o', long = "output", value_name = "IMAGE")]
+    output: Option<PathBuf>,
+    /// Colour per primitive: random (seeded) or ordered (palette by first appearance)
+    /// (single-dash form: -cm).
+    #[arg(long = "color-mode", value_name = "MODE", default_value = "random",
+          value_parser = ["random", "ordered"])]
+    color_mode: String,
+    /// Brightness against hit distance: linear or log (single-dash form: -cv).
+    #[arg(long = "color-variation", value_name = "VARIATION", default_value = "linear",
+          value_parser = ["linear", "log"])]
+    color_variation: String,
+    /// Print the time of each phase and primary rays per second to stderr (single-dash: -time).
+    #[arg(long)]
+    time: bool,
+    /// Intersection kernel: simd (8-wide f32 packets), scalar (one ray at a time, f64: the
+    /// oracle) or scalar-f32.
+    #[arg(long, value_enum, default_value = "simd")]
+    kernel: KernelArg,
+    /// Seed of the random colour mode.
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    seed: u64,
+    /// Also write per-pixel primitive ids (int32, -1 = background) as a (H, W) .npy file.
+    #[arg(long, value_name = "FILE.npy")]
+    ids: Option<PathBuf>,
+    /// Also write per-pixel hit distances (float32, +inf = background) as a (H, W) .npy file.
+    #[arg(long, value_name = "FILE.npy")]
+    depth: Option<PathBuf>,
+}
+
+#[derive(Args, Debug)]
+struct CompareArgs {
+    #[command(flatten)]
+    view: View,
+    /// Write a diff image: the render dimmed, mismatches marked (red: unexcused, yellow: tie,
+    /// cyan: within the edge band).
+    #[arg(short = 'o', long = "output", value_name = "IMAGE")]
+    output: Option<PathBuf>,
+    /// Unexcused id mismatches allowed, in parts per million of the pixels, before the exit
+    /// code turns to 1.
+    #[arg(long, value_name = "PPM", default_value_t = 0.0)]
+    max_mismatch_ppm: f64,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum KernelArg {
+    Simd,
+    Scalar,
+    #[value(name = "scalar-f32")]
+    ScalarF32,
+}
+
+/// What the shared options resolve to.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ViewSettings {
+    pub input: PathBuf,
+    pub width: u32,
+    pub height: u32,
+    /// From `-fov`; the scene's value or 60 applies when `None`.
+    pub fov: Option<f64>,
+    pub threads: Option<usize>,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct RenderSettings {
+    pub view: ViewSettings,
+    pub output: PathBuf,
+    pub color_mode: ColorMode,
+    pub variation: Variation,
+    pub time: bool,
+    pub kernel: KernelArg,
+    pub seed: u64,
+    pub ids: Option<PathBuf>,
+    pub depth: Option<PathBuf>,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct CompareSettings {
+    pub view: ViewSettings,
+    pub output: Option<PathBuf>,
+    pub max_mismatch_ppm: f64,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum Command {
+    Render(RenderSettings),
+    Compare(CompareSettings),
+    /// `-h` / `--version`: text for stdout, exit 0.
+    Info(String),
+}
+
+/// Parses the full argument list (program name first).
+pub fn parse(args: impl IntoIterator<Item = OsString>) -> Result<Command> {
+    let cli = match Cli::try_parse_from(translate(args)) {
+        Ok(cli) => cli,
+        Err(e) => {
+            use clap::error::ErrorKind::{DisplayHelp, DisplayVersion};
+            return match e.kind() {
+                DisplayHelp | DisplayVersion => Ok(Command::Info(e.render().to_string())),
+                _ => {
+                    let text = e.render().to_string();
+                    let text = text
+                        .trim_end()
+                        .strip_prefix("error: ")
+                        .unwrap_or(text.trim_end());
+                    Err(Error::usage(text.to_string()))
+                }
+            };
+        }
+    };
+    match cli.command {
+        Some(Sub::Compare(c)) => Ok(Command::Compare(CompareSettings {
+            view: view(c.view)?,
+            output: c.output,
+            max_mismatch_ppm: c.max_mismatch_ppm,
+        })),
+        None => {
+            let r = cli.render;
+            let view = view(r.view)?;
+            let output = r.output.unwrap_or_else(|| view.input.with_extension("png"));
+            Ok(Command::Render(RenderSettings {
+                view,
+                output,
+                color_mode: ColorMode::parse(&r.color_mode).expect("clap checked the value"),
+                variation: Variation::parse(&r.color_variation).expect("clap checked the value"),
+                time: r.time,
+                kernel: r.kernel,
+                seed: r.seed,
+                ids: r.ids,
+                depth: r.depth,
+            }))
+        }
+    }
+}
+
+fn view(v: View) -> Result<ViewSettings> {
+    let (width, height) = parse_size(&v.size)?;
+    if let Some(fov) = v.fov {
+        crate::scene::validate::fov(fov).map_err(|m| Error::usage(format!("--fov {fov}: {m}")))?;
+    }
+    if v.threads == Some(0) {
+        return Err(Error::usage("--threads 0: need at least one thread"));
+    }
+    Ok(ViewSettings {
+        input: v.input.expect("clap requires --input"),
+        width,
+        height,
+        fov: v.fov,
+        threads: v.threads,
+    })
+}
+
+/// `WIDTHxHEIGHT` within `limits::MAX_SIDE` and `limits::MAX_PIXELS`.
+pub fn parse_size(s: &str) -> Result<(u32, u32)> {
+    use crate::limits::{MAX_PIXELS, MAX_SIDE};
+    let bad = |why: &str| Error::usage(format!("--size {s}: {why}"));
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| bad("expected WIDTHxHEIGHT, e.g. 800x600"))?;
+    let side = |v: &str| -> Result<u32> {
+        let n: u64 = v
+            .parse()
+            .map_err(|_| bad("width and height must be whole numbers"))?;
+        if n == 0 {
+            return Err(bad("width and height must be at least 1"));
+        }
+        if n > MAX_SIDE as u64 {
+            return Err(bad(&format!("a side may be at most {MAX_SIDE} pixels")));
+        }
+        Ok(n as u32)
+    };
+    let (w, h) = (side(w)?, side(h)?);
+    if w as u64 * h as u64 > MAX_PIXELS {
+        return Err(bad(&format!("at most {MAX_PIXELS} pixels per image")));
+    }
+    Ok((w, h))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn args(s: &str) -> Vec<OsString> {
+        std::iter::once("lanecast")
+            .chain(s.split_whitespace())
+            .map(OsString::from)
+            .collect()
+    }
+
+    fn render(s: &str) -> RenderSettings {
+        match parse(args(s)).unwrap() {
+            Command::Render(r) => r,
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn original_invocations_parse() {
+        let r = render("-i scene1.sc");
+        assert_eq!(r.output, PathBuf::from("scene1.png"));
+        assert_eq!((r.view.width, r.view.height), (640, 480));
+        assert_eq!(r.color_mode, ColorMode::Random);
+        assert_eq!(r.variation, Variation::Linear);
+        assert_eq!(
+            render("-i scene1.sc -o out.bmp").output,
+            PathBuf::from("out.bmp")
+        );
+        let r = render("-i scene1.sc -size 800x600");
+        assert_eq!((r.view.width, r.view.height), (800, 600));
+        assert_eq!(render("-i scene1.sc -fov 80").view.fov, Some(80.0));
+        assert_eq!(
+            render("-i scene1.sc -cm ordered").color_mode,
+            ColorMode::Ordered
+        );
+        assert_eq!(render("-i scene1.sc -cv log").variation, Variation::Log);
+        assert!(render("-i scene1.sc -time").time);
+    }
+
+    #[test]
+    fn long_forms_parse_the_same() {
+        let a = render("-i s.sc -o o.png -size 320x200 -fov 45 -cm ordered -cv log -time");
+        let b = render(
+            "--input s.sc --output o.png --size 320x200 --fov 45 --color-mode ordered \
+             --color-variation log --time",
+        );
+        assert_eq!(a, b);
+    }
+
+    #[test]
+    fn bad_sizes_are_usage_errors() {
+        for s in [
+            "0x10",
+            "10x0",
+            "10",
+            "axb",
+            "100000x10",
+            "65536x65536",
+            "-5x10",
+        ] {
+            let e = parse(args(&format!("-i s.sc -size {s}"))).unwrap_err();
+            assert_eq!(e.exit_code(), 2, "{s}");
+            assert!(e.to_string().contains("size"), "{s}: {e}");
+        }
+    }
+
+    #[test]
+    fn bad_fov_and_threads_are_usage_errors() {
+        for a in [
+            "-fov 0",
+            "-fov 180",
+            "-fov -3",
+            "--threads 0",
+            "--kernel gpu",
+            "-cm rainbow",
+        ] {
+            let e = parse(args(&format!("-i s.sc {a}"))).unwrap_err();
+            assert_eq!(e.exit_code(), 2, "{a}: {e}");
+        }
+        assert!(parse(args("-o x.png")).is_err(), "-i is required");
+    }
+
+    #[test]
+    fn help_is_info_and_lists_examples() {
+        match parse(args("-h")).unwrap() {
+            Command::Info(t) => assert!(t.contains("Examples:") && t.contains("--color-mode")),
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn compare_subcommand() {
+        match parse(args(
+            "compare -i s.sc -size 64x48 -o d.png --max-mismatch-ppm 5",
+        ))
+        .unwrap()
+        {
+            Command::Compare(c) => {
+                assert_eq!((c.view.width, c.view.height), (64, 48));
+                assert_eq!(c.output, Some(PathBuf::from("d.png")));
+                assert_eq!(c.max_mismatch_ppm, 5.0);
+            }
+            other => panic!("{other:?}"),
+        }
+    }
+}

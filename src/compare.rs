@@ -1,0 +1,221 @@
+//! `lanecast compare`: the packet kernel against the f64 scalar oracle, pixel by pixel.
+//!
+//! Each id mismatch is classified, by re-evaluating both candidates in f64 on the oracle's ray:
+//! - tie: both candidates are hit and their f64 distances agree within [`TIE_REL`] (relative):
+//!   which one is "nearest" is decided by rounding, not by the scene;
+//! - edge: the ray passes within [`EDGE_BAND`] radians of either candidate's boundary (a polygon
+//!   edge or a sphere's silhouette), so f32 rounding of the ray or the primitive can flip it;
+//! - unexcused: anything else. The command fails when these exceed `--max-mismatch-ppm`.
+//! Depth differences are measured where both kernels hit the same primitive.
+
+use crate::camera::Camera;
+use crate::cli::CompareSettings;
+use crate::error::{Error, Result};
+use crate::kernel::edge_eps;
+use crate::kernel::polygon::{PolyK, QuadK, TriangleK, polygon_x1_within};
+use crate::kernel::sphere::{SphereK, sphere_x1};
+use crate::output;
+use crate::real::V3;
+use crate::render::{Frame, render_packet, render_scalar};
+use crate::run::{load_view, pool};
+use crate::scene::{Scene, Shape};
+use crate::shade::{ColorMode, Variation, shade};
+use crate::soa::{Packed, Prepared};
+use glam::DVec3;
+
+/// Two hits closer than this relative distance are a genuine tie. The packet kernel's distances
+/// err by ~5u_f32 = 3e-7 relative (kernel comments); 1e-5 leaves a wide margin.
+pub const TIE_REL: f64 = 1e-5;
+
+/// Half-width, in radians, of the band around a primitive's boundary inside which f32 may
+/// legitimately disagree with f64: ~3u_f32 of ray direction error plus the polygons' 8u edge
+/// tolerance plus ~4u of sphere silhouette error, doubled: 32u_f32 = 1.9e-6 rad.
+pub const EDGE_BAND: f64 = 32.0 * (f32::EPSILON as f64 / 2.0);
+
+/// The outcome of one comparison.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Report {
+    pub pixels: usize,
+    pub mismatches: usize,
+    pub ties: usize,
+    pub edges: usize,
+    pub unexcused: usize,
+    /// Pixels where both kernels hit the same primitive.
+    pub same_hits: usize,
+    pub depth_rel_max: f64,
+    pub depth_rel_p99: f64,
+    /// Per pixel: 0 agree, 1 tie, 2 edge, 3 unexcused.
+    pub class: Vec<u8>,
+}
+
+impl Report {
+    pub fn unexcused_ppm(&self) -> f64 {
+        self.unexcused as f64 * 1e6 / self.pixels.max(1) as f64
+    }
+}
+
+/// f64 distance to `shape` along `d` from `eye`, with its boundary moved outward by `slack`
+/// radians (inward when negative).
+fn hit_with_slack(shape: &Shape, eye: DVec3, d: V3<f64>, slack: f64) -> Option<f64> {
+    match shape {
+        Shape::Sphere { center, radius } => {
+            let r = radius + slack * (*center - eye).length();
+            (r > 0.0)
+                .then(|| sphere_x1(&SphereK::new(*center, r, eye), d))
+                .flatten()
+        }
+        Shape::Triangle(v) => poly(TriangleK::triangle(v, eye), d, slack),
+        Shape::Quad(v) => poly(QuadK::quad(v, eye), d, slack),
+    }
+}
+
+fn poly<const N: usize>(k: Option<PolyK<f64, N>>, d: V3<f64>, slack: f64) -> Option<f64> {
+    polygon_x1_within(&k?, d, edge_eps::<f64>() + slack)
+}
+
+/// Classifies one mismatch: 1 tie, 2 edge, 3 unexcused.
+fn classify(scene: &Scene, eye: DVec3, d: V3<f64>, a: i32, b: i32) -> u8 {
+    let shape = |id: i32| (id >= 0).then(|| &scene.shapes[id as usize]);
+    let (sa, sb) = (shape(a), shape(b));
+    if let (Some(sa), Some(sb)) = (sa, sb) {
+        let ta = hit_with_slack(sa, eye, d, EDGE_BAND);
+        let tb = hit_with_slack(sb, eye, d, EDGE_BAND);
+        if let (Some(ta), Some(tb)) = (ta, tb) {
+            if (ta - tb).abs() <= TIE_REL * ta.max(tb) {
+                return 1;
+            }
+        }
+    }
+    let near_edge = |s: Option<&Shape>| {
+        s.is_some_and(|s| {
+            hit_with_slack(s, eye, d, EDGE_BAND).is_some()
+                != hit_with_slack(s, eye, d, -EDGE_BAND).is_some()
+        })
+    };
+    if near_edge(sa) || near_edge(sb) { 2 } else { 3 }
+}
+
+/// Renders `scene` with both kernels (in the current rayon pool) and compares them.
+pub fn compare(scene: &Scene, camera: &Camera) -> (Report, Frame<f64>) {
+    let (w, h) = (camera.width as usize, camera.height as usize);
+    let prepared = Prepared::new(scene, camera.eye);
+    let packet = render_packet(&Packed::new(&prepared), &camera.tables(4, 2), w, h);
+    let t64 = camera.tables::<f64>(1, 1);
+    let oracle = render_scalar(&prepared, &t64, w, h);
+    let mut r = Report {
+        pixels: w * h,
+        class: vec![0; w * h],
+        ..Report::default()
+    };
+    let mut rel = Vec::new();
+    for i in 0..w * h {
+        let (a, b) = (oracle.ids[i], packet.ids[i]);
+        if a == b {
+            if a >= 0 {
+                let (t64, t32) = (oracle.depth[i], packet.depth[i] as f64);
+                rel.push((t32 - t64).abs() / t64);
+            }
+            continue;
+        }
+        let c = classify(scene, camera.eye, t64.dir_x1(i % w, i / w), a, b);
+        r.class[i] = c;
+        r.mismatches += 1;
+        match c {
+            1 => r.ties += 1,
+            2 => r.edges += 1,
+            _ => r.unexcused += 1,
+        }
+    }
+    r.same_hits = rel.len();
+    rel.sort_by(f64::total_cmp);
+    r.depth_rel_max = rel.last().copied().unwrap_or(0.0);
+    r.depth_rel_p99 = rel
+        .get((rel.len() * 99).div_ceil(100).saturating_sub(1))
+        .copied()
+        .unwrap_or(0.0);
+    (r, oracle)
+}
+
+/// The diff image: the oracle's render at a third of its brightness, mismatches marked in
+/// yellow (tie), cyan (edge band) or red (unexcused).
+fn diff_image(report: &Report, oracle: &Frame<f64>) -> Vec<u8> {
+    let depth: Vec<f32> = oracle.depth.iter().map(|&d| d as f32).collect();
+    let mut rgb = shade(
+        &oracle.ids,
+        &depth,
+        oracle.width,
+        ColorMode::Random,
+        Variation::Linear,
+        0,
+    );
+    for (px, &c) in rgb.chunks_mut(3).zip(&report.class) {
+        let mark: Option<[u8; 3]> = match c {
+            1 => Some([255, 255, 0]),
+            2 => Some([0, 255, 255]),
+            3 => Some([255, 0, 0]),
+            _ => None,
+        };
+        match mark {
+            Some(m) => px.copy_from_slice(&m),
+            None => px.iter_mut().for_each(|v| *v /= 3),
+        }
+    }
+    rgb
+}
+
+/// Runs the compare command: prints the report, writes the diff image, fails past tolerance.
+pub fn compare_command(s: &CompareSettings) -> Result<()> {
+    if let Some(out) = &s.output {
+        output::image_format(out)?;
+        if output::same_file(out, &s.view.input) {
+            return Err(Error::usage(format!(
+                "--output {}: is the input scene",
+                out.display()
+            )));
+        }
+    }
+    let (scene, camera) = load_view(&s.view)?;
+    let (report, oracle) = pool(s.view.threads)?.install(|| compare(&scene, &camera));
+    let r = &report;
+    let ppm = |n: usize| n as f64 * 1e6 / r.pixels.max(1) as f64;
+    println!("scene       {}", s.view.input.display());
+    println!(
+        "pixels      {} ({}x{})",
+        r.pixels, camera.width, camera.height
+    );
+    println!(
+        "mismatches  {} ({:.1} ppm)",
+        r.mismatches,
+        ppm(r.mismatches)
+    );
+    println!(
+        "  ties      {} (f64 distances within {TIE_REL:e} relative)",
+        r.ties
+    );
+    println!(
+        "  edge band {} (ray within {EDGE_BAND:.2e} rad of a boundary)",
+        r.edges
+    );
+    println!(
+        "  unexcused {} ({:.1} ppm; allowed {} ppm)",
+        r.unexcused,
+        r.unexcused_ppm(),
+        s.max_mismatch_ppm
+    );
+    println!(
+        "depth rel   max {:.3e}, p99 {:.3e} over {} same-id hits",
+        r.depth_rel_max, r.depth_rel_p99, r.same_hits
+    );
+    if let Some(out) = &s.output {
+        output::write_image(out, camera.width, camera.height, &diff_image(r, &oracle))?;
+    }
+    if r.unexcused_ppm() > s.max_mismatch_ppm {
+        return Err(Error::Failed(format!(
+            "{} unexcused id mismatches ({:.1} ppm) exceed --max-mismatch-ppm {}",
+            r.unexcused,
+            r.unexcused_ppm(),
+            s.max_mismatch_ppm
+        )));
+    }
+    Ok(())
+}

@@ -1,0 +1,146 @@
+//! Intersection kernels. Each primitive family has its own file (`sphere.rs`; `polygon.rs` for
+//! triangles and quads) holding its formula, its per-primitive constants and its 1-lane (`*_x1`, generic over f32/f64) and 8-lane (`*_x8`,
+//! `wide::f32x8`) forms side by side. The loops that drive them are `scalar.rs` (one ray at a
+//! time over every primitive: the oracle in f64) and `packet.rs` (8 rays at a time).
+//!
+//! Every kernel works in eye-relative coordinates: all primary rays share the eye as origin, so
+//! each primitive's constants are computed once, in f64, relative to the eye, and only then
+//! rounded to the kernel's precision. A scene far from the world origin loses nothing.
+//!
+//! Nearest-hit rule, identical in every driver ([`closer`] and [`Hit8::update`]): a hit counts
+//! when 0 < t; it replaces the current one when t is smaller, or when t is exactly equal and its
+//! primitive id is lower (exact ties go to the lower id).
+
+pub mod packet;
+pub mod polygon;
+pub mod scalar;
+pub mod sphere;
+
+use crate::real::Real;
+use wide::f32x8;
+
+/// Rays per packet.
+pub const LANES: usize = 8;
+
+/// Edge tolerance of the triangle and quad tests, in radians of angle between the ray and an
+/// edge's plane (the edge normals are unit vectors, the ray direction is a unit vector).
+/// Evaluating `dot(d, n)` for unit `d` and a rounded unit `n` errs by at most about 4u
+/// (u = unit roundoff: one rounding of `n`, plus the gamma_3 bound of a 3-term dot product), so
+/// 8u is twice the error bound: a ray that exactly grazes a shared edge is accepted by both
+/// triangles' tests rather than by neither. See `triangle.rs` for the watertightness argument.
+#[inline]
+pub fn edge_eps<T: Real>() -> T {
+    T::from_f64(8.0) * T::UNIT_ROUNDOFF
+}
+
+/// The nearest hit of one ray so far: `id == -1` and `t == inf` when there is none.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Hit<T> {
+    pub t: T,
+    pub id: i32,
+}
+
+impl<T: Real> Hit<T> {
+    pub const NONE: Hit<T> = Hit {
+        t: T::INFINITY,
+        id: -1,
+    };
+
+    /// Applies the nearest-hit rule to a candidate.
+    #[inline]
+    pub fn update(&mut self, t: T, id: i32) {
+        if closer(t, id, self.t, self.id) {
+            *self = Hit { t, id };
+        }
+    }
+}
+
+/// The nearest-hit rule: `t` is a hit (0 < t < inf) and beats the current best (smaller t, or
+/// equal t and lower id). With `best_id == -1` an equal t never wins, so `t == inf` never counts.
+#[inline]
+pub fn closer<T: Real>(t: T, id: i32, best_t: T, best_id: i32) -> bool {
+    t > T::ZERO && (t < best_t || (t == best_t && id < best_id))
+}
+
+/// Eight rays' directions (unit vectors, origin at the eye).
+#[derive(Debug, Clone, Copy)]
+pub struct Ray8 {
+    pub d: [f32x8; 3],
+}
+
+/// The nearest hits of eight rays. Ids are carried as f32 (exact: at most
+/// `limits::MAX_PRIMITIVES` = 2^24 ids), so every mask stays in the f32 domain.
+/// An inactive lane (a pixel past the image border) starts with `t = 0`: no hit can be closer,
+/// so the lane comes back unchanged.
+#[derive(Debug, Clone, Copy)]
+pub struct Hit8 {
+    pub t: f32x8,
+    pub id: f32x8,
+}
+
+impl Hit8 {
+    /// No hit yet in the `active` lanes; the others are frozen.
+    #[inline(always)]
+    pub fn new(active: f32x8) -> Hit8 {
+        Hit8 {
+            t: active.select(f32x8::splat(f32::INFINITY), f32x8::ZERO),
+            id: f32x8::splat(-1.0),
+        }
+    }
+
+    /// [`closer`], lane by lane, for candidate distances `t` of primitive `id` in the lanes of
+    /// `mask`.
+    #[inline(always)]
+    pub fn update(&mut self, mask: f32x8, t: f32x8, id: f32) {
+        let id = f32x8::splat(id);
+        let wins = t.simd_lt(self.t) | (t.simd_eq(self.t) & id.simd_lt(self.id));
+        let take = mask & t.simd_gt(f32x8::ZERO) & wins;
+        self.t = take.select(t, self.t);
+        self.id = take.select(id, self.id);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tie_goes_to_lower_id_in_both_forms() {
+        let mut h = Hit::<f32>::NONE;
+        h.update(2.0, 5);
+        h.update(2.0, 3);
+        h.update(2.0, 4);
+        assert_eq!(h, Hit { t: 2.0, id: 3 });
+
+        let mut h8 = Hit8::new(f32x8::splat(-1.0).simd_lt(f32x8::ZERO));
+        let all = f32x8::splat(1.0).simd_gt(f32x8::ZERO);
+        h8.update(all, f32x8::splat(2.0), 5.0);
+        h8.update(all, f32x8::splat(2.0), 3.0);
+        h8.update(all, f32x8::splat(2.0), 4.0);
+        assert_eq!(h8.id.to_array(), [3.0; 8]);
+    }
+
+    #[test]
+    fn non_positive_and_infinite_t_never_count() {
+        let mut h = Hit::<f64>::NONE;
+        h.update(0.0, 0);
+        h.update(-1.0, 0);
+        h.update(f64::INFINITY, 0);
+        h.update(f64::NAN, 0);
+        assert_eq!(h.id, -1);
+    }
+
+    #[test]
+    fn inactive_lanes_come_back_unchanged() {
+        let active = f32x8::new([1.0, 1.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0]).simd_gt(f32x8::ZERO);
+        let mut h8 = Hit8::new(active);
+        let before = h8;
+        let all = f32x8::splat(1.0).simd_gt(f32x8::ZERO);
+        h8.update(all, f32x8::splat(1e-30), 0.0);
+        for lane in 4..8 {
+            assert_eq!(h8.t.to_array()[lane], before.t.to_array()[lane]);
+            assert_eq!(h8.id.to_array()[lane], -1.0);
+        }
+        assert_eq!(h8.id.to_array()[0], 0.0);
+    }
+}

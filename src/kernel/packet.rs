@@ -1,0 +1,58 @@
+//! The packet driver: eight rays from one pixel block against every primitive, type by type.
+//! Each primitive's constants are broadcast to the eight lanes; a type the scene lacks has an
+//! empty store and its loop runs zero times.
+
+use crate::camera::RayTables;
+use crate::kernel::polygon::polygon_x8;
+use crate::kernel::sphere::sphere_x8;
+use crate::kernel::{Hit8, LANES};
+use crate::soa::{Packed, Polygons};
+use wide::f32x8;
+
+/// Pixel block of one packet: `BLOCK_W` x `BLOCK_H` = `LANES`; lane i covers pixel
+/// (x0 + i % BLOCK_W, y0 + i / BLOCK_W). 4x2 was measured against 8x1 (README, "Block shape").
+pub const BLOCK_W: usize = 4;
+pub const BLOCK_H: usize = LANES / BLOCK_W;
+
+/// Nearest hits of the rays `d` (unit directions from the eye), folded into `hit`.
+#[inline]
+pub fn trace_x8(p: &Packed, d: &[f32x8; 3], hit: &mut Hit8) {
+    let s = &p.spheres;
+    for i in 0..s.len() {
+        if let Some((mask, t)) = sphere_x8(&s.get(i), d) {
+            hit.update(mask, t, s.id[i]);
+        }
+    }
+    polygons_x8(&p.triangles, d, hit);
+    polygons_x8(&p.quads, d, hit);
+}
+
+#[inline(always)]
+fn polygons_x8<const N: usize>(g: &Polygons<N>, d: &[f32x8; 3], hit: &mut Hit8) {
+    for i in 0..g.len() {
+        if let Some((mask, t)) = polygon_x8(&g.get(i), d) {
+            hit.update(mask, t, g.id[i]);
+        }
+    }
+}
+
+/// The rays of the block whose top-left pixel is (x0, y0), and the mask of lanes inside a
+/// `width` x `height` image. `tables` must be padded to whole blocks.
+#[inline(always)]
+pub fn block_rays(
+    tables: &RayTables<f32>,
+    x0: usize,
+    y0: usize,
+    width: usize,
+    height: usize,
+) -> ([f32x8; 3], f32x8) {
+    let sx = f32x8::new(std::array::from_fn(|i| tables.sx[x0 + i % BLOCK_W]));
+    let sy = f32x8::new(std::array::from_fn(|i| tables.sy[y0 + i / BLOCK_W]));
+    let active = if x0 + BLOCK_W <= width && y0 + BLOCK_H <= height {
+        f32x8::ZERO.simd_eq(f32x8::ZERO)
+    } else {
+        let inside = |i: usize| x0 + i % BLOCK_W < width && y0 + i / BLOCK_W < height;
+        f32x8::new(std::array::from_fn(|i| if inside(i) { 1.0 } else { 0.0 })).simd_gt(f32x8::ZERO)
+    };
+    (tables.dir_x8(sx, sy), active)
+}

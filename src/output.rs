@@ -1,0 +1,473 @@
+//! Output files: PNG/BMP images and NumPy `.npy` buffers, each written atomically.
+//!
+//! Every file goes to a temporary file in the target's folder (`.{name}.{pid}.{n}.lanecast-tmp`),
+//! is flushed and synced, then renamed onto the target. A failed write removes the temporary
+//! file and leaves any existing target untouched; a missing folder is an error, never created.
+
+use std::ffi::OsString;
+use std::fs::{self, File, OpenOptions};
+use std::io::{self, BufWriter, Write};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use image::ExtendedColorType;
+use image::ImageEncoder;
+use image::codecs::bmp::BmpEncoder;
+use image::codecs::png::{CompressionType, FilterType, PngEncoder};
+
+use crate::{Error, Result};
+
+/// Image formats lanecast writes, chosen by the output file's extension.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ImageFormat {
+    Png,
+    Bmp,
+}
+
+/// The image format for `path`, from its extension (case-insensitive).
+pub fn image_format(path: &Path) -> Result<ImageFormat> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        Some("png") => Ok(ImageFormat::Png),
+        Some("bmp") => Ok(ImageFormat::Bmp),
+        _ => Err(Error::usage(format!(
+            "{}: unsupported image format; the output name must end in .png or .bmp",
+            path.display()
+        ))),
+    }
+}
+
+/// Writes `rgb` (3 bytes per pixel, row 0 at the top) as a PNG or BMP, by `path`'s extension.
+///
+/// PNG uses `CompressionType::Fast` (fdeflate) with the `Adaptive` filter. Measured on
+/// 1920x1080 synthetic renders (release build): a flat-shaded scene of spheres over a tiled
+/// floor took 2.6 ms / 107 kB (zlib default: 15 ms / 62 kB); a worst case of 6x6-pixel
+/// primitives with per-pixel depth took 11 ms / 2.9 MB (zlib default: 450 ms / 2.1 MB). The
+/// `Sub` filter alone is faster on smooth scenes but 60% larger on busy ones. The PNG is built
+/// in memory (small next to the pixels); a BMP is as large as the pixels, so it is streamed
+/// into the temporary file instead.
+pub fn write_image(path: &Path, width: u32, height: u32, rgb: &[u8]) -> Result<()> {
+    let format = image_format(path)?;
+    if u64::from(width) * u64::from(height) * 3 != rgb.len() as u64 {
+        return Err(Error::Failed(format!(
+            "{}: internal error: {} bytes of pixels for a {width}x{height} image",
+            path.display(),
+            rgb.len()
+        )));
+    }
+    let encode_failed = |e: image::ImageError| {
+        Error::Failed(format!("{}: cannot encode image: {e}", path.display()))
+    };
+    match format {
+        ImageFormat::Png => {
+            let mut png = Vec::new();
+            PngEncoder::new_with_quality(&mut png, CompressionType::Fast, FilterType::Adaptive)
+                .write_image(rgb, width, height, ExtendedColorType::Rgb8)
+                .map_err(encode_failed)?;
+            write_atomic(path, &png)
+        }
+        ImageFormat::Bmp => write_atomic_with(path, |w| {
+            BmpEncoder::new(w)
+                .encode(rgb, width, height, ExtendedColorType::Rgb8)
+                .map_err(|e| match e {
+                    image::ImageError::IoError(e) => e,
+                    other => io::Error::other(other),
+                })
+        }),
+    }
+}
+
+/// Writes `bytes` to `path` atomically: temporary file in the same folder, sync, rename.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
+    write_atomic_with(path, |w| w.write_all(bytes))
+}
+
+/// Distinguishes temporary files of concurrent writes within one process.
+static TMP_COUNTER: AtomicU64 = AtomicU64::new(0);
+
+/// Creates a fresh temporary file next to `path`; `create_new` never reuses or follows an
+/// existing entry (a stale file from a crashed run with the same pid just moves us on).
+fn create_temp(path: &Path) -> io::Result<(PathBuf, File)> {
+    let name = path
+        .file_name()
+        .ok_or_else(|| io::Error::new(io::ErrorKind::InvalidInput, "not a file name"))?;
+    let dir = parent_dir(path);
+    let mut attempts = 0;
+    loop {
+        let n = TMP_COUNTER.fetch_add(1, Ordering::Relaxed);
+        let mut tmp_name = OsString::from(".");
+        tmp_name.push(name);
+        tmp_name.push(format!(".{}.{n}.lanecast-tmp", std::process::id()));
+        let tmp = dir.join(tmp_name);
+        match OpenOptions::new().write(true).create_new(true).open(&tmp) {
+            Ok(file) => return Ok((tmp, file)),
+            Err(e) if e.kind() == io::ErrorKind::AlreadyExists && attempts < 100 => attempts += 1,
+            Err(e) => return Err(e),
+        }
+    }
+}
+
+/// The atomic write, with the content produced by `fill` into a buffered writer.
+fn write_atomic_with(
+    path: &Path,
+    fill: impl FnOnce(&mut BufWriter<File>) -> io::Result<()>,
+) -> Result<()> {
+    let fail = |e| Error::io(path, "write output", e);
+    let (tmp, file) = create_temp(path).map_err(fail)?;
+    let result = (|| {
+        let mut w = BufWriter::with_capacity(1 << 16, file);
+        fill(&mut w)?;
+        let file = w.into_inner().map_err(|e| e.into_error())?;
+        file.sync_all()?;
+        drop(file);
+        fs::rename(&tmp, path)
+    })();
+    if let Err(e) = result {
+        // The file handle is closed by now; removal failing leaves nothing better to do.
+        let _ = fs::remove_file(&tmp);
+        return Err(fail(e));
+    }
+    sync_parent(path);
+    Ok(())
+}
+
+/// Best effort: make the rename itself durable. The output is complete either way.
+fn sync_parent(path: &Path) {
+    #[cfg(unix)]
+    if let Ok(d) = File::open(parent_dir(path)) {
+        let _ = d.sync_all();
+    }
+    #[cfg(not(unix))]
+    let _ = path;
+}
+
+/// The folder holding `path`: "." for a bare file name.
+fn parent_dir(path: &Path) -> &Path {
+    match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    }
+}
+
+/// The `.npy` (format 1.0) header for a C-order `(height, width)` array of `descr` elements.
+/// Magic, version, u16 length and dict together are padded with spaces to a multiple of 64
+/// bytes and end in `\n`, as NumPy itself writes them.
+fn npy_header(descr: &str, width: usize, height: usize) -> Vec<u8> {
+    let dict =
+        format!("{{'descr': '{descr}', 'fortran_order': False, 'shape': ({height}, {width}), }}");
+    let unpadded = 10 + dict.len() + 1; // magic (6) + version (2) + length (2) + dict + '\n'
+    let total = unpadded.div_ceil(64) * 64;
+    let header_len = (total - 10) as u16; // the dict is < 100 bytes: always fits
+    let mut out = Vec::with_capacity(total);
+    out.extend_from_slice(b"\x93NUMPY\x01\x00");
+    out.extend_from_slice(&header_len.to_le_bytes());
+    out.extend_from_slice(dict.as_bytes());
+    out.resize(total - 1, b' ');
+    out.push(b'\n');
+    out
+}
+
+/// Writes `data` as little-endian 4-byte values, in chunks to bound the staging buffer.
+fn write_le<T: Copy>(w: &mut impl Write, data: &[T], le: impl Fn(T) -> [u8; 4]) -> io::Result<()> {
+    let mut buf = Vec::with_capacity(4 * 16384);
+    for chunk in data.chunks(16384) {
+        buf.clear();
+        buf.extend(chunk.iter().flat_map(|&v| le(v)));
+        w.write_all(&buf)?;
+    }
+    Ok(())
+}
+
+/// A complete `.npy` file for a `height` x `width` array of i32, row-major.
+/// Panics if `data.len() != width * height`.
+pub fn npy_i32(width: usize, height: usize, data: &[i32]) -> Vec<u8> {
+    npy_bytes("<i4", width, height, data, i32::to_le_bytes)
+}
+
+/// A complete `.npy` file for a `height` x `width` array of f32, row-major.
+/// Panics if `data.len() != width * height`.
+pub fn npy_f32(width: usize, height: usize, data: &[f32]) -> Vec<u8> {
+    npy_bytes("<f4", width, height, data, f32::to_le_bytes)
+}
+
+fn npy_bytes<T: Copy>(
+    descr: &str,
+    w: usize,
+    h: usize,
+    data: &[T],
+    le: impl Fn(T) -> [u8; 4],
+) -> Vec<u8> {
+    assert_eq!(data.len(), w * h, "npy data does not match its shape");
+    let mut out = npy_header(descr, w, h);
+    write_le(&mut out, data, le).expect("writing to a Vec cannot fail");
+    out
+}
+
+/// Shared by the `write_npy_*` functions: the file is streamed, never built whole in memory.
+fn write_npy<T: Copy>(
+    path: &Path,
+    descr: &str,
+    (width, height): (usize, usize),
+    data: &[T],
+    le: impl Fn(T) -> [u8; 4],
+) -> Result<()> {
+    if width.checked_mul(height) != Some(data.len()) {
+        return Err(Error::Failed(format!(
+            "{}: internal error: {} values for a {width}x{height} array",
+            path.display(),
+            data.len()
+        )));
+    }
+    write_atomic_with(path, |w| {
+        w.write_all(&npy_header(descr, width, height))?;
+        write_le(w, data, le)
+    })
+}
+
+/// Writes a `height` x `width` i32 array as `.npy`, atomically.
+pub fn write_npy_i32(path: &Path, width: usize, height: usize, data: &[i32]) -> Result<()> {
+    write_npy(path, "<i4", (width, height), data, i32::to_le_bytes)
+}
+
+/// Writes a `height` x `width` f32 array as `.npy`, atomically.
+pub fn write_npy_f32(path: &Path, width: usize, height: usize, data: &[f32]) -> Result<()> {
+    write_npy(path, "<f4", (width, height), data, f32::to_le_bytes)
+}
+
+/// True if `a` and `b` name the same file, whether or not it exists yet: existing files are
+/// compared by identity (device and inode on Unix, so hard links and symlinks count), others by
+/// canonical parent folder plus file name.
+pub fn same_file(a: &Path, b: &Path) -> bool {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        if let (Ok(ma), Ok(mb)) = (fs::metadata(a), fs::metadata(b)) {
+            return ma.dev() == mb.dev() && ma.ino() == mb.ino();
+        }
+    }
+    match (resolve(a), resolve(b)) {
+        (Some(ra), Some(rb)) => ra == rb,
+        _ => a == b,
+    }
+}
+
+/// `path` made absolute and free of links: the whole path if it exists, else its canonical
+/// parent joined with its file name. `None` if the parent does not resolve either.
+fn resolve(path: &Path) -> Option<PathBuf> {
+    if let Ok(p) = fs::canonicalize(path) {
+        return Some(p);
+    }
+    let name = path.file_name()?;
+    Some(fs::canonicalize(parent_dir(path)).ok()?.join(name))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A fresh, empty folder under the system temp dir, removed on drop.
+    struct TestDir(PathBuf);
+
+    impl TestDir {
+        fn new(name: &str) -> TestDir {
+            static N: AtomicU64 = AtomicU64::new(0);
+            let n = N.fetch_add(1, Ordering::Relaxed);
+            let dir = std::env::temp_dir()
+                .join(format!("lanecast-output-{}-{n}-{name}", std::process::id()));
+            let _ = fs::remove_dir_all(&dir);
+            fs::create_dir_all(&dir).unwrap();
+            TestDir(dir)
+        }
+
+        /// Names of the entries in the folder, sorted (temporary files included).
+        fn entries(&self) -> Vec<String> {
+            let mut names: Vec<String> = fs::read_dir(&self.0)
+                .unwrap()
+                .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+                .collect();
+            names.sort();
+            names
+        }
+    }
+
+    impl Drop for TestDir {
+        fn drop(&mut self) {
+            let _ = fs::remove_dir_all(&self.0);
+        }
+    }
+
+    fn test_pixels(w: u32, h: u32) -> Vec<u8> {
+        (0..w * h * 3).map(|i| (i * 37 % 251) as u8).collect()
+    }
+
+    #[test]
+    fn npy_header_exact_bytes() {
+        let bytes = npy_i32(3, 2, &[1, -1, 2, 3, 0x0102_0304, 5]);
+        // 10 bytes of preamble + 59 of dict + '\n' = 70: padded to 128.
+        let dict = b"{'descr': '<i4', 'fortran_order': False, 'shape': (2, 3), }";
+        assert_eq!(dict.len(), 59);
+        assert_eq!(&bytes[..8], b"\x93NUMPY\x01\x00");
+        assert_eq!(u16::from_le_bytes([bytes[8], bytes[9]]), 128 - 10);
+        assert_eq!(&bytes[10..69], dict);
+        assert!(bytes[69..127].iter().all(|&b| b == b' '));
+        assert_eq!(bytes[127], b'\n');
+        let data = &bytes[128..];
+        assert_eq!(data.len(), 24);
+        assert_eq!(&data[..8], &[1, 0, 0, 0, 0xFF, 0xFF, 0xFF, 0xFF]);
+        assert_eq!(&data[16..20], &[4, 3, 2, 1]);
+
+        let f = npy_f32(1, 1, &[1.5]);
+        assert_eq!(f.len(), 128 + 4);
+        let text = String::from_utf8_lossy(&f[10..128]);
+        assert!(text.starts_with("{'descr': '<f4', 'fortran_order': False, 'shape': (1, 1), }"));
+        assert_eq!(&f[128..], &1.5f32.to_le_bytes());
+        // Long shapes still pad to a multiple of 64.
+        for (w, h) in [(65_536, 4096), (0, 0), (12345, 1)] {
+            let header = npy_header("<i4", w, h);
+            assert_eq!(header.len() % 64, 0);
+            assert_eq!(*header.last().unwrap(), b'\n');
+            assert_eq!(
+                usize::from(u16::from_le_bytes([header[8], header[9]])),
+                header.len() - 10
+            );
+        }
+    }
+
+    #[test]
+    fn write_npy_files_match_in_memory_encoding() {
+        let dir = TestDir::new("npy");
+        let (ids, depth) = ([7, -1, 3, 9], [1.0, f32::INFINITY, 2.5, 0.125]);
+        let (ids_path, depth_path) = (dir.0.join("ids.npy"), dir.0.join("depth.npy"));
+        write_npy_i32(&ids_path, 2, 2, &ids).unwrap();
+        write_npy_f32(&depth_path, 2, 2, &depth).unwrap();
+        assert_eq!(fs::read(ids_path).unwrap(), npy_i32(2, 2, &ids));
+        assert_eq!(fs::read(depth_path).unwrap(), npy_f32(2, 2, &depth));
+        assert!(write_npy_i32(&dir.0.join("bad.npy"), 3, 2, &ids).is_err());
+        assert_eq!(dir.entries(), ["depth.npy", "ids.npy"]);
+    }
+
+    #[test]
+    fn png_and_bmp_round_trip() {
+        let dir = TestDir::new("images");
+        let (w, h) = (17, 5); // odd width exercises BMP row padding
+        let rgb = test_pixels(w, h);
+        for name in ["a.png", "b.BMP", "c.Png"] {
+            let path = dir.0.join(name);
+            write_image(&path, w, h, &rgb).unwrap();
+            let back = image::open(&path).unwrap().to_rgb8();
+            assert_eq!(back.dimensions(), (w, h), "{name}");
+            assert_eq!(back.as_raw(), &rgb, "{name}");
+        }
+        assert_eq!(dir.entries(), ["a.png", "b.BMP", "c.Png"]);
+    }
+
+    #[test]
+    fn unknown_extension_is_a_usage_error() {
+        for name in ["out.jpg", "out", "out.png.txt", ".png"] {
+            let err = image_format(Path::new(name)).unwrap_err();
+            assert!(matches!(err, Error::Usage(_)), "{name}");
+            let msg = err.to_string();
+            assert!(
+                msg.contains(name) && msg.contains(".png") && msg.contains(".bmp"),
+                "{msg}"
+            );
+        }
+        assert_eq!(
+            image_format(Path::new("x/y.PNG")).unwrap(),
+            ImageFormat::Png
+        );
+        assert_eq!(image_format(Path::new("y.bmp")).unwrap(), ImageFormat::Bmp);
+    }
+
+    #[test]
+    fn missing_folder_fails_and_creates_nothing() {
+        let dir = TestDir::new("missing");
+        let target = dir.0.join("nope").join("out.png");
+        let err = write_image(&target, 2, 2, &test_pixels(2, 2)).unwrap_err();
+        match &err {
+            Error::Io { path, .. } => assert_eq!(path, &target),
+            other => panic!("expected an I/O error, got {other:?}"),
+        }
+        assert_eq!(err.exit_code(), 1);
+        // A wrong pixel count is caught before any file is created.
+        let short = write_image(&dir.0.join("a.png"), 2, 2, &[0; 11]);
+        assert!(matches!(short, Err(Error::Failed(_))));
+        assert!(dir.entries().is_empty());
+    }
+
+    #[test]
+    fn failed_write_keeps_existing_file_and_leaves_no_temp() {
+        let dir = TestDir::new("keep");
+        let target = dir.0.join("out.bin");
+        fs::write(&target, b"old").unwrap();
+
+        // Failure after the temporary file exists (the content producer fails).
+        let err = write_atomic_with(&target, |w| {
+            w.write_all(&[0; 100_000])?;
+            Err(io::Error::other("disk on fire"))
+        })
+        .unwrap_err();
+        assert!(err.to_string().contains("out.bin") && err.to_string().contains("disk on fire"));
+        assert_eq!(fs::read(&target).unwrap(), b"old");
+        assert_eq!(dir.entries(), ["out.bin"]);
+
+        // Failure at the rename: the target is a folder.
+        let sub = dir.0.join("sub.png");
+        fs::create_dir(&sub).unwrap();
+        assert!(write_image(&sub, 1, 1, &[1, 2, 3]).is_err());
+        assert!(sub.is_dir());
+        assert_eq!(dir.entries(), ["out.bin", "sub.png"]);
+
+        // Failure because the "folder" is a file.
+        assert!(write_atomic(&target.join("x.bin"), b"new").is_err());
+        assert_eq!(fs::read(&target).unwrap(), b"old");
+
+        // Success replaces the content and leaves no temporary file either.
+        write_atomic(&target, b"new").unwrap();
+        assert_eq!(fs::read(&target).unwrap(), b"new");
+        assert_eq!(dir.entries(), ["out.bin", "sub.png"]);
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn read_only_folder_keeps_existing_file() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = TestDir::new("readonly");
+        let target = dir.0.join("out.png");
+        fs::write(&target, b"old").unwrap();
+        fs::set_permissions(&dir.0, fs::Permissions::from_mode(0o555)).unwrap();
+        // Root (common in containers) ignores permission bits: nothing to test there.
+        let probe = dir.0.join("probe");
+        let enforced = File::create(&probe).is_err();
+        let _ = fs::remove_file(&probe);
+        if enforced {
+            assert!(write_image(&target, 1, 1, &[1, 2, 3]).is_err());
+            assert_eq!(fs::read(&target).unwrap(), b"old");
+        }
+        fs::set_permissions(&dir.0, fs::Permissions::from_mode(0o755)).unwrap();
+        assert_eq!(dir.entries(), ["out.png"]);
+    }
+
+    #[test]
+    fn same_file_with_and_without_existing_target() {
+        let dir = TestDir::new("same");
+        let a = dir.0.join("scene.txt");
+        fs::write(&a, b"x").unwrap();
+        let up = dir.0.join("..").join(dir.0.file_name().unwrap());
+        assert!(same_file(&a, &up.join(".").join("scene.txt")));
+        assert!(!same_file(&a, &dir.0.join("out.png")));
+        // Neither exists yet: compared through the canonical parent.
+        let b = dir.0.join("new.png");
+        assert!(same_file(&b, &dir.0.join(".").join("new.png")));
+        assert!(!same_file(&b, &dir.0.join("other.png")));
+        #[cfg(unix)]
+        {
+            let link = dir.0.join("link.txt");
+            std::os::unix::fs::symlink(&a, &link).unwrap();
+            assert!(same_file(&a, &link));
+        }
+    }
+}

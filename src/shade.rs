@@ -1,0 +1,379 @@
+//! Colour from per-pixel hit buffers: a base colour per primitive, dimmed with distance.
+//!
+//! Inputs are the renderer's buffers, row 0 at the top: `ids` (primitive id per pixel, -1 for
+//! background) and `depth` (hit distance `t`, `+inf` for background). The output is RGB, three
+//! bytes per pixel. Background pixels are black (0, 0, 0).
+//!
+//! Base colour, by [`ColorMode`]:
+//! - `random` (default): a vivid colour per primitive id, hashed from the id and the seed
+//!   (splitmix64), so it is the same on every run and changes with `--seed`.
+//! - `ordered`: [`PALETTE`] (violet, blue, green, yellow, orange, red), cycling after six,
+//!   given to primitives in order of first appearance scanning rows from the top-left pixel.
+//!
+//! Brightness, by [`Variation`], with `tmin` and `tmax` the smallest and largest finite hit
+//! distance in the image and `B_MIN = 0.2`:
+//! - `linear`: `b = 1 - (1 - B_MIN) * (t - tmin) / (tmax - tmin)`
+//! - `log`:    `b = 1 - (1 - B_MIN) * ln(t / tmin) / ln(tmax / tmin)`
+//!
+//! with `b = 1` when `tmax == tmin` (and, for `log`, when `tmin <= 0`). Each channel is
+//! `round(colour * b)`, so the nearest hit shows its full colour and the farthest `B_MIN` of it.
+
+use std::collections::HashMap;
+
+use rayon::prelude::*;
+
+/// The `ordered` palette, in assignment order: violet, blue, green, yellow, orange, red.
+pub const PALETTE: [[u8; 3]; 6] = [
+    [148, 0, 211], // violet
+    [0, 0, 255],   // blue
+    [0, 200, 0],   // green
+    [255, 255, 0], // yellow
+    [255, 140, 0], // orange
+    [255, 0, 0],   // red
+];
+
+/// Brightness of the farthest hit, as a fraction of its colour, so it stays visible.
+pub const B_MIN: f64 = 0.2;
+
+/// How each primitive gets its base colour.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ColorMode {
+    Random,
+    Ordered,
+}
+
+impl ColorMode {
+    pub fn parse(s: &str) -> Option<Self> {
+        match s {
+            "random" => Some(ColorMode::Random),
+            "ordered" => Some(ColorMode::Ordered),
+            _ => None,
+        }
+    }
+
+    pub fn name(&self) -> &'static str {
+        match self {
+            ColorMode::Random => "random",
+            ColorMode::Ordered => "ordered",
+        }
+    }
+}
+
+/// How brightness falls off with hit distance.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Variation {
+    Linear,
+    Log,
+}
+
+impl Variation {
+    pub fn parse(s: &str) -> Option<Self> {
+        match s {
+            "linear" => Some(Variation::Linear),
+            "log" => Some(Variation::Log),
+            _ => None,
+        }
+    }
+
+    pub fn name(&self) -> &'static str {
+        match self {
+            Variation::Linear => "linear",
+            Variation::Log => "log",
+        }
+    }
+}
+
+/// Shades a `width`-wide image from its hit buffers; returns `3 * ids.len()` RGB bytes.
+///
+/// Panics if `ids` and `depth` differ in length or `ids.len()` is not a multiple of `width`
+/// (both are programming errors: the renderer allocates them together).
+pub fn shade(
+    ids: &[i32],
+    depth: &[f32],
+    width: usize,
+    mode: ColorMode,
+    variation: Variation,
+    seed: u64,
+) -> Vec<u8> {
+    assert_eq!(
+        ids.len(),
+        depth.len(),
+        "id and depth buffers differ in length"
+    );
+    let mut rgb = vec![0u8; ids.len() * 3];
+    if ids.is_empty() {
+        return rgb;
+    }
+    assert!(
+        width > 0 && ids.len().is_multiple_of(width),
+        "buffer length is not a whole number of rows"
+    );
+
+    let bright = Brightness::new(ids, depth, variation);
+    // Ordered colours depend on scan position, so they are fixed here, sequentially, before
+    // any parallel work; the per-pixel pass below only looks them up.
+    let ordered = match mode {
+        ColorMode::Ordered => Some(first_appearance(ids)),
+        ColorMode::Random => None,
+    };
+    let base = |id: i32| match &ordered {
+        Some(order) => PALETTE[order[&id] as usize % PALETTE.len()],
+        None => random_color(id, seed),
+    };
+
+    rgb.par_chunks_mut(width * 3)
+        .zip(ids.par_chunks(width))
+        .zip(depth.par_chunks(width))
+        .for_each(|((out, ids), depth)| {
+            // Neighbouring pixels mostly share a primitive: look its colour up once per run.
+            let mut last: Option<(i32, [u8; 3])> = None;
+            for ((px, &id), &t) in out.chunks_exact_mut(3).zip(ids).zip(depth) {
+                if id < 0 {
+                    continue; // background stays black
+                }
+                let colour = match last {
+                    Some((lid, c)) if lid == id => c,
+                    _ => {
+                        let c = base(id);
+                        last = Some((id, c));
+                        c
+                    }
+                };
+                let b = bright.at(t);
+                for (o, &c) in px.iter_mut().zip(&colour) {
+                    *o = (f64::from(c) * b).round() as u8;
+                }
+            }
+        });
+    rgb
+}
+
+/// Maps each visible primitive id to its rank of first appearance in reading order.
+fn first_appearance(ids: &[i32]) -> HashMap<i32, u32> {
+    let mut order = HashMap::new();
+    let mut last = -1;
+    for &id in ids {
+        // Skip runs of the same id so the hash map is touched once per run, not per pixel.
+        if id >= 0 && id != last {
+            let next = order.len() as u32;
+            order.entry(id).or_insert(next);
+        }
+        last = id;
+    }
+    order
+}
+
+/// Depth range of the image and the fall-off to apply within it.
+struct Brightness {
+    tmin: f64,
+    tmax: f64,
+    variation: Variation,
+}
+
+impl Brightness {
+    fn new(ids: &[i32], depth: &[f32], variation: Variation) -> Self {
+        // min and max are exact, so the parallel reduction gives the same range on any thread
+        // count.
+        let (tmin, tmax) = ids
+            .par_iter()
+            .zip(depth.par_iter())
+            .filter(|(id, t)| **id >= 0 && t.is_finite())
+            .map(|(_, &t)| (t, t))
+            .reduce(
+                || (f32::INFINITY, f32::NEG_INFINITY),
+                |a, b| (a.0.min(b.0), a.1.max(b.1)),
+            );
+        Brightness {
+            tmin: f64::from(tmin),
+            tmax: f64::from(tmax),
+            variation,
+        }
+    }
+
+    /// Brightness factor in `[B_MIN, 1]` for a hit at distance `t`.
+    fn at(&self, t: f32) -> f64 {
+        let (tmin, tmax) = (self.tmin, self.tmax);
+        // Also covers "no finite hit at all" (tmin = +inf, tmax = -inf).
+        if tmin >= tmax {
+            return 1.0;
+        }
+        if !t.is_finite() {
+            return B_MIN; // a hit without a usable distance: treat it as the farthest
+        }
+        let t = f64::from(t);
+        let frac = match self.variation {
+            Variation::Linear => (t - tmin) / (tmax - tmin),
+            Variation::Log if tmin <= 0.0 => return 1.0,
+            Variation::Log => (t / tmin).ln() / (tmax / tmin).ln(),
+        };
+        (1.0 - (1.0 - B_MIN) * frac).clamp(B_MIN, 1.0)
+    }
+}
+
+/// splitmix64 finaliser: a well-mixed 64-bit hash of `x`.
+fn splitmix64(x: u64) -> u64 {
+    let mut z = x.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+/// A vivid colour for primitive `id`: hue anywhere, saturation in [0.6, 1], value in [0.8, 1],
+/// so the brightest channel is at least 204 and no colour is near black (or grey).
+fn random_color(id: i32, seed: u64) -> [u8; 3] {
+    let h = splitmix64(seed ^ (id as u32 as u64).wrapping_mul(0xD1B5_4A32_D192_ED03));
+    let unit = |bits: u64| (bits & 0xFFFF) as f64 / 65535.0;
+    let hue = unit(h) * 6.0;
+    let sat = 0.6 + 0.4 * unit(h >> 16);
+    let val = 0.8 + 0.2 * unit(h >> 32);
+    hsv_to_rgb(hue, sat, val)
+}
+
+/// HSV to 8-bit RGB, with `hue` in [0, 6] (sextants) and `sat`, `val` in [0, 1].
+fn hsv_to_rgb(hue: f64, sat: f64, val: f64) -> [u8; 3] {
+    let sextant = hue.floor();
+    let f = hue - sextant;
+    let p = val * (1.0 - sat);
+    let q = val * (1.0 - sat * f);
+    let r = val * (1.0 - sat * (1.0 - f));
+    let (r, g, b) = match sextant as u32 % 6 {
+        0 => (val, r, p),
+        1 => (q, val, p),
+        2 => (p, val, r),
+        3 => (p, q, val),
+        4 => (r, p, val),
+        _ => (val, p, q),
+    };
+    let byte = |c: f64| (c * 255.0).round() as u8;
+    [byte(r), byte(g), byte(b)]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn px(rgb: &[u8], i: usize) -> [u8; 3] {
+        [rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]]
+    }
+
+    fn scaled(c: [u8; 3], b: f64) -> [u8; 3] {
+        c.map(|v| (f64::from(v) * b).round() as u8)
+    }
+
+    #[test]
+    fn names_round_trip() {
+        for m in [ColorMode::Random, ColorMode::Ordered] {
+            assert_eq!(ColorMode::parse(m.name()), Some(m));
+        }
+        for v in [Variation::Linear, Variation::Log] {
+            assert_eq!(Variation::parse(v.name()), Some(v));
+        }
+        assert_eq!(ColorMode::parse("Random"), None);
+        assert_eq!(Variation::parse("exp"), None);
+    }
+
+    #[test]
+    fn palette_order_and_cycling() {
+        // Seven primitives in reading order, all at the same depth (full brightness).
+        let ids = [0, 1, 2, 3, 4, 5, 6];
+        let depth = [1.0f32; 7];
+        let rgb = shade(&ids, &depth, 7, ColorMode::Ordered, Variation::Linear, 0);
+        for i in 0..7 {
+            assert_eq!(px(&rgb, i), PALETTE[i % 6], "pixel {i}");
+        }
+        assert_eq!(px(&rgb, 6), [148, 0, 211]); // the 7th is violet again
+    }
+
+    #[test]
+    fn first_appearance_is_by_scan_position_not_id() {
+        // 3x2 image: top row 42, -1, 7; bottom row 7, 3, 42. First seen: 42, 7, 3.
+        let ids = [42, -1, 7, 7, 3, 42];
+        let depth = [2.0, f32::INFINITY, 2.0, 2.0, 2.0, 2.0];
+        let rgb = shade(&ids, &depth, 3, ColorMode::Ordered, Variation::Linear, 0);
+        assert_eq!(px(&rgb, 0), PALETTE[0]);
+        assert_eq!(px(&rgb, 2), PALETTE[1]);
+        assert_eq!(px(&rgb, 3), PALETTE[1]);
+        assert_eq!(px(&rgb, 4), PALETTE[2]);
+        assert_eq!(px(&rgb, 5), PALETTE[0]);
+    }
+
+    #[test]
+    fn background_is_black() {
+        let ids = [-1, 5, -1, -1];
+        let depth = [f32::INFINITY, 3.0, f32::INFINITY, f32::INFINITY];
+        for mode in [ColorMode::Random, ColorMode::Ordered] {
+            let rgb = shade(&ids, &depth, 2, mode, Variation::Log, 9);
+            for i in [0, 2, 3] {
+                assert_eq!(px(&rgb, i), [0, 0, 0]);
+            }
+            assert_ne!(px(&rgb, 1), [0, 0, 0]);
+        }
+        let rgb = shade(
+            &[-1; 4],
+            &[f32::INFINITY; 4],
+            2,
+            ColorMode::Random,
+            Variation::Linear,
+            0,
+        );
+        assert!(rgb.iter().all(|&v| v == 0));
+    }
+
+    #[test]
+    fn brightness_endpoints() {
+        // One primitive seen at three distances: nearest full colour, farthest B_MIN of it.
+        let ids = [0, 0, 0, -1];
+        let depth = [1.0, 4.0, 10.0, f32::INFINITY];
+        for variation in [Variation::Linear, Variation::Log] {
+            let rgb = shade(&ids, &depth, 2, ColorMode::Ordered, variation, 0);
+            assert_eq!(px(&rgb, 0), PALETTE[0]);
+            assert_eq!(px(&rgb, 2), scaled(PALETTE[0], B_MIN));
+            let mid = px(&rgb, 1);
+            assert!(mid[0] < PALETTE[0][0] && mid[0] > scaled(PALETTE[0], B_MIN)[0]);
+        }
+        // Middle values follow the documented formulas.
+        let lin = shade(&ids, &depth, 2, ColorMode::Ordered, Variation::Linear, 0);
+        assert_eq!(px(&lin, 1), scaled(PALETTE[0], 1.0 - 0.8 * 3.0 / 9.0));
+        let log = shade(&ids, &depth, 2, ColorMode::Ordered, Variation::Log, 0);
+        assert_eq!(
+            px(&log, 1),
+            scaled(PALETTE[0], 1.0 - 0.8 * 4f64.ln() / 10f64.ln())
+        );
+        // A single depth: everything at full brightness.
+        let flat = shade(
+            &[1, 2],
+            &[5.0, 5.0],
+            2,
+            ColorMode::Ordered,
+            Variation::Log,
+            0,
+        );
+        assert_eq!(px(&flat, 1), PALETTE[1]);
+    }
+
+    #[test]
+    fn random_is_deterministic_and_seed_sensitive() {
+        let ids: Vec<i32> = (0..64).collect();
+        let depth = vec![1.0f32; 64];
+        let a = shade(&ids, &depth, 8, ColorMode::Random, Variation::Linear, 1);
+        let b = shade(&ids, &depth, 8, ColorMode::Random, Variation::Linear, 1);
+        let c = shade(&ids, &depth, 8, ColorMode::Random, Variation::Linear, 2);
+        assert_eq!(a, b);
+        let differing = (0..64).filter(|&i| px(&a, i) != px(&c, i)).count();
+        assert!(
+            differing > 60,
+            "only {differing} of 64 colours changed with the seed"
+        );
+        // A pixel's colour depends on its id only, not on its neighbours.
+        let one = shade(&[17], &[1.0], 1, ColorMode::Random, Variation::Linear, 1);
+        assert_eq!(px(&one, 0), px(&a, 17));
+    }
+
+    #[test]
+    fn random_colours_are_never_near_black() {
+        for id in 0..10_000 {
+            let c = random_color(id, 0x5EED);
+            assert!(c.iter().copied().max().unwrap() >= 200, "id {id}: {c:?}");
+        }
+    }
+}

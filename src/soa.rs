@@ -1,0 +1,246 @@
+//! Primitives prepared for the kernels: eye-relative constants computed once per render setup.
+//!
+//! [`Prepared`] holds each type's constants as records, in f64 as computed (the oracle's input)
+//! or rounded to f32 (the scalar f32 path's input). [`Packed`] holds the same f32 values as
+//! structure-of-arrays columns, one store per type, for the 8-lane kernels: the packet loop
+//! walks each column front to back and broadcasts one primitive's values to the eight lanes.
+//! A type the scene does not contain has empty columns, and its loop is never entered.
+
+use crate::kernel::polygon::{PolyK, QuadK, TriangleK};
+use crate::kernel::sphere::SphereK;
+use crate::real::Real;
+use crate::scene::{Scene, Shape};
+use glam::DVec3;
+
+/// One type's prepared primitives and their ids (ascending: file order).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Group<K> {
+    pub k: Vec<K>,
+    pub id: Vec<i32>,
+}
+
+impl<K> Default for Group<K> {
+    fn default() -> Self {
+        Group {
+            k: Vec::new(),
+            id: Vec::new(),
+        }
+    }
+}
+
+impl<K> Group<K> {
+    fn push(&mut self, k: K, id: usize) {
+        self.k.push(k);
+        self.id.push(id as i32);
+    }
+
+    pub fn len(&self) -> usize {
+        self.k.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.k.is_empty()
+    }
+
+    fn map<L>(&self, f: impl Fn(&K) -> L) -> Group<L> {
+        Group {
+            k: self.k.iter().map(f).collect(),
+            id: self.id.clone(),
+        }
+    }
+}
+
+/// Every primitive's eye-relative constants, by type. Polygons seen exactly edge-on from the eye
+/// are left out (they cover no pixel; see `kernel::polygon`).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Prepared<T> {
+    pub spheres: Group<SphereK<T>>,
+    pub triangles: Group<TriangleK<T>>,
+    pub quads: Group<QuadK<T>>,
+}
+
+impl Prepared<f64> {
+    /// Constants of every shape of `scene` seen from `eye`, in f64.
+    pub fn new(scene: &Scene, eye: DVec3) -> Prepared<f64> {
+        let mut p = Prepared::default();
+        for (id, shape) in scene.shapes.iter().enumerate() {
+            match shape {
+                Shape::Sphere { center, radius } => {
+                    p.spheres.push(SphereK::new(*center, *radius, eye), id)
+                }
+                Shape::Triangle(v) => {
+                    if let Some(k) = TriangleK::triangle(v, eye) {
+                        p.triangles.push(k, id)
+                    }
+                }
+                Shape::Quad(v) => {
+                    if let Some(k) = QuadK::quad(v, eye) {
+                        p.quads.push(k, id)
+                    }
+                }
+            }
+        }
+        p
+    }
+
+    /// The same constants rounded to `T`.
+    pub fn cast<T: Real>(&self) -> Prepared<T> {
+        Prepared {
+            spheres: self.spheres.map(|k| k.cast()),
+            triangles: self.triangles.map(|k| k.cast()),
+            quads: self.quads.map(|k| k.cast()),
+        }
+    }
+}
+
+/// Spheres as f32 columns.
+#[derive(Debug, Clone, Default)]
+pub struct Spheres {
+    pub ocx: Vec<f32>,
+    pub ocy: Vec<f32>,
+    pub ocz: Vec<f32>,
+    pub r2: Vec<f32>,
+    pub c: Vec<f32>,
+    pub inside: Vec<bool>,
+    /// Primitive ids as f32 (exact below 2^24 = `limits::MAX_PRIMITIVES`).
+    pub id: Vec<f32>,
+}
+
+impl Spheres {
+    fn new(g: &Group<SphereK<f64>>) -> Spheres {
+        let k: Vec<SphereK<f32>> = g.k.iter().map(|k| k.cast()).collect();
+        Spheres {
+            ocx: k.iter().map(|k| k.oc[0]).collect(),
+            ocy: k.iter().map(|k| k.oc[1]).collect(),
+            ocz: k.iter().map(|k| k.oc[2]).collect(),
+            r2: k.iter().map(|k| k.r2).collect(),
+            c: k.iter().map(|k| k.c).collect(),
+            inside: k.iter().map(|k| k.inside).collect(),
+            id: g.id.iter().map(|&i| i as f32).collect(),
+        }
+    }
+
+    pub fn len(&self) -> usize {
+        self.id.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.id.is_empty()
+    }
+
+    /// Sphere `i`'s constants, gathered from the columns.
+    #[inline(always)]
+    pub fn get(&self, i: usize) -> SphereK<f32> {
+        SphereK {
+            oc: [self.ocx[i], self.ocy[i], self.ocz[i]],
+            r2: self.r2[i],
+            c: self.c[i],
+            inside: self.inside[i],
+        }
+    }
+}
+
+/// Convex polygons with `N` edges (triangles: 3, quads: 4) as f32 columns: the x, y and z
+/// column of each edge normal, of the plane normal, and the plane distance.
+#[derive(Debug, Clone)]
+pub struct Polygons<const N: usize> {
+    pub n: [[Vec<f32>; 3]; N],
+    pub nrm: [Vec<f32>; 3],
+    pub p: Vec<f32>,
+    /// Primitive ids as f32 (exact below 2^24).
+    pub id: Vec<f32>,
+}
+
+impl<const N: usize> Polygons<N> {
+    fn new(g: &Group<PolyK<f64, N>>) -> Polygons<N> {
+        let k: Vec<PolyK<f32, N>> = g.k.iter().map(|k| k.cast()).collect();
+        let col = |f: &dyn Fn(&PolyK<f32, N>) -> f32| k.iter().map(f).collect::<Vec<f32>>();
+        Polygons {
+            n: std::array::from_fn(|e| std::array::from_fn(|c| col(&|k| k.n[e][c]))),
+            nrm: std::array::from_fn(|c| col(&|k| k.nrm[c])),
+            p: col(&|k| k.p),
+            id: g.id.iter().map(|&i| i as f32).collect(),
+        }
+    }
+
+    pub fn len(&self) -> usize {
+        self.id.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.id.is_empty()
+    }
+
+    /// Polygon `i`'s constants, gathered from the columns.
+    #[inline(always)]
+    pub fn get(&self, i: usize) -> PolyK<f32, N> {
+        PolyK {
+            n: std::array::from_fn(|e| [self.n[e][0][i], self.n[e][1][i], self.n[e][2][i]]),
+            nrm: [self.nrm[0][i], self.nrm[1][i], self.nrm[2][i]],
+            p: self.p[i],
+        }
+    }
+}
+
+/// All primitives as f32 structure-of-arrays stores, one per type.
+#[derive(Debug, Clone)]
+pub struct Packed {
+    pub spheres: Spheres,
+    pub triangles: Polygons<3>,
+    pub quads: Polygons<4>,
+}
+
+impl Packed {
+    pub fn new(p: &Prepared<f64>) -> Packed {
+        Packed {
+            spheres: Spheres::new(&p.spheres),
+            triangles: Polygons::new(&p.triangles),
+            quads: Polygons::new(&p.quads),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::CameraSpec;
+
+    #[test]
+    fn packed_columns_round_trip_the_f32_records() {
+        let scene = Scene {
+            source: "t.sc".into(),
+            camera: CameraSpec {
+                eye: DVec3::new(0.0, 0.0, 5.0),
+                look: DVec3::ZERO,
+                up: DVec3::Y,
+                fov_deg: None,
+            },
+            shapes: vec![
+                Shape::Triangle([DVec3::X, DVec3::Y, DVec3::ZERO]),
+                Shape::Sphere {
+                    center: DVec3::ONE,
+                    radius: 0.5,
+                },
+                Shape::Quad([
+                    DVec3::new(0.0, 0.0, 0.0),
+                    DVec3::new(1.0, 0.0, 0.0),
+                    DVec3::new(1.0, 1.0, 0.0),
+                    DVec3::new(0.0, 1.0, 0.0),
+                ]),
+                // edge-on from the eye: left out
+                Shape::Triangle([DVec3::ZERO, DVec3::Z, DVec3::X]),
+            ],
+            lines: vec![1, 2, 3, 4],
+        };
+        let p = Prepared::new(&scene, scene.camera.eye);
+        let f = p.cast::<f32>();
+        let packed = Packed::new(&p);
+        assert_eq!(f.spheres.id, vec![1]);
+        assert_eq!(f.triangles.id, vec![0]);
+        assert_eq!(f.quads.id, vec![2]);
+        assert_eq!(packed.spheres.get(0), f.spheres.k[0]);
+        assert_eq!(packed.triangles.get(0), f.triangles.k[0]);
+        assert_eq!(packed.quads.get(0), f.quads.k[0]);
+        assert_eq!(packed.quads.id, vec![2.0]);
+    }
+}
