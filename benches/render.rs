@@ -1,1 +1,55 @@
-fn main(){}
+//! Render-phase throughput of the seed scenes: packet vs scalar f32 vs scalar f64, on one thread
+//! and on all threads, at 640x480 and 1920x1080. One criterion group per scene and size, so every
+//! ratio in README's bench table comes from one run (`scripts/bench_table.py` prints it).
+//!
+//! `LANECAST_BENCH_QUICK=1` keeps one size (640x480) and fewer samples, for a fast look.
+
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use lanecast::camera::Camera;
+use lanecast::render::{Kernel, Setup};
+use lanecast::run::DEFAULT_FOV;
+use lanecast::scene::load_scene;
+use std::hint::black_box;
+use std::path::Path;
+use std::time::Duration;
+
+const KERNELS: [(&str, Kernel); 3] = [
+    ("packet", Kernel::Packet),
+    ("scalar_f32", Kernel::ScalarF32),
+    ("scalar_f64", Kernel::ScalarF64),
+];
+
+fn seed_scenes(c: &mut Criterion) {
+    let quick = std::env::var_os("LANECAST_BENCH_QUICK").is_some();
+    let sizes: &[(u32, u32)] = if quick { &[(640, 480)] } else { &[(640, 480), (1920, 1080)] };
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let pools: Vec<(usize, rayon::ThreadPool)> = [1, cores]
+        .iter()
+        .map(|&n| (n, rayon::ThreadPoolBuilder::new().num_threads(n).build().unwrap()))
+        .collect();
+    for n in 1..=7 {
+        let path = format!("{}/scenes/scene{n}.sc", env!("CARGO_MANIFEST_DIR"));
+        let scene = load_scene(Path::new(&path)).expect("seed scene parses");
+        for &(w, h) in sizes {
+            let camera = Camera::new(&scene.camera, scene.camera.fov_deg.unwrap_or(DEFAULT_FOV), w, h);
+            let mut g = c.benchmark_group(format!("scene{n}/{w}x{h}"));
+            g.throughput(Throughput::Elements(w as u64 * h as u64));
+            g.sample_size(10);
+            g.warm_up_time(Duration::from_millis(if quick { 200 } else { 500 }));
+            g.measurement_time(Duration::from_secs(if quick { 1 } else { 2 }));
+            for (name, kernel) in KERNELS {
+                let setup = Setup::new(kernel, &scene, &camera);
+                for (threads, pool) in &pools {
+                    let id = BenchmarkId::new(name, format!("t{threads}"));
+                    g.bench_function(id, |b| {
+                        b.iter(|| pool.install(|| black_box(setup.render(w as usize, h as usize))))
+                    });
+                }
+            }
+            g.finish();
+        }
+    }
+}
+
+criterion_group!(benches, seed_scenes);
+criterion_main!(benches);

@@ -74,7 +74,12 @@ struct View {
     #[arg(short = 'i', long = "input", value_name = "SCENE.sc", required = true)]
     input: Option<PathBuf>,
     /// Image size WIDTHxHEIGHT, e.g. 800x600 (single-dash form: -size).
-    #[arg(long, value_name = "WxH", default_value = "640x480")]
+    #[arg(
+        long,
+        value_name = "WxH",
+        default_value = "640x480",
+        allow_hyphen_values = true
+    )]
     size: String,
     /// Horizontal field of view in degrees, 0 < FOV < 180 [default: the scene's, else 60]
     /// (single-dash form: -fov).

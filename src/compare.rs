@@ -6,6 +6,7 @@
 //! - edge: the ray passes within [`EDGE_BAND`] radians of either candidate's boundary (a polygon
 //!   edge or a sphere's silhouette), so f32 rounding of the ray or the primitive can flip it;
 //! - unexcused: anything else. The command fails when these exceed `--max-mismatch-ppm`.
+//!
 //! Depth differences are measured where both kernels hit the same primitive.
 
 use crate::camera::Camera;
@@ -80,10 +81,10 @@ fn classify(scene: &Scene, eye: DVec3, d: V3<f64>, a: i32, b: i32) -> u8 {
     if let (Some(sa), Some(sb)) = (sa, sb) {
         let ta = hit_with_slack(sa, eye, d, EDGE_BAND);
         let tb = hit_with_slack(sb, eye, d, EDGE_BAND);
-        if let (Some(ta), Some(tb)) = (ta, tb) {
-            if (ta - tb).abs() <= TIE_REL * ta.max(tb) {
-                return 1;
-            }
+        if let (Some(ta), Some(tb)) = (ta, tb)
+            && (ta - tb).abs() <= TIE_REL * ta.max(tb)
+        {
+            return 1;
         }
     }
     let near_edge = |s: Option<&Shape>| {

@@ -10,11 +10,20 @@ pub enum Error {
     /// A bad command-line argument; the message names the argument.
     Usage(String),
     /// Bad content in an input file, at a 1-based line and column (column 0: whole line).
-    Input { file: PathBuf, line: usize, col: usize, msg: String },
+    Input {
+        file: PathBuf,
+        line: usize,
+        col: usize,
+        msg: String,
+    },
     /// An input file as a whole is unusable (unreadable, not UTF-8, no camera line...).
     InputFile { file: PathBuf, msg: String },
     /// Reading or writing a file failed.
-    Io { path: PathBuf, action: &'static str, source: std::io::Error },
+    Io {
+        path: PathBuf,
+        action: &'static str,
+        source: std::io::Error,
+    },
     /// Anything else that is not the user's input: encoder failures, failed comparisons.
     Failed(String),
 }
@@ -31,12 +40,26 @@ impl Error {
         Error::Usage(msg.into())
     }
 
-    pub fn input(file: impl Into<PathBuf>, line: usize, col: usize, msg: impl Into<String>) -> Error {
-        Error::Input { file: file.into(), line, col, msg: msg.into() }
+    pub fn input(
+        file: impl Into<PathBuf>,
+        line: usize,
+        col: usize,
+        msg: impl Into<String>,
+    ) -> Error {
+        Error::Input {
+            file: file.into(),
+            line,
+            col,
+            msg: msg.into(),
+        }
     }
 
     pub fn io(path: impl Into<PathBuf>, action: &'static str, source: std::io::Error) -> Error {
-        Error::Io { path: path.into(), action, source }
+        Error::Io {
+            path: path.into(),
+            action,
+            source,
+        }
     }
 }
 
@@ -44,12 +67,23 @@ impl fmt::Display for Error {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Error::Usage(m) => write!(f, "{m}"),
-            Error::Input { file, line, col, msg } if *col > 0 => {
+            Error::Input {
+                file,
+                line,
+                col,
+                msg,
+            } if *col > 0 => {
                 write!(f, "{}:{line}:{col}: {msg}", file.display())
             }
-            Error::Input { file, line, msg, .. } => write!(f, "{}:{line}: {msg}", file.display()),
+            Error::Input {
+                file, line, msg, ..
+            } => write!(f, "{}:{line}: {msg}", file.display()),
             Error::InputFile { file, msg } => write!(f, "{}: {msg}", file.display()),
-            Error::Io { path, action, source } => {
+            Error::Io {
+                path,
+                action,
+                source,
+            } => {
                 write!(f, "{}: cannot {action}: {source}", path.display())
             }
             Error::Failed(m) => write!(f, "{m}"),

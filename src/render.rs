@@ -108,7 +108,7 @@ pub enum Kernel {
 
 /// Everything a kernel needs before its first ray: the setup phase.
 pub enum Setup {
-    Packet(Packed, RayTables<f32>),
+    Packet(Box<Packed>, RayTables<f32>),
     ScalarF32(Prepared<f32>, RayTables<f32>),
     ScalarF64(Prepared<f64>, RayTables<f64>),
 }
@@ -122,7 +122,7 @@ impl Setup {
         let prepared = Prepared::new(scene, camera.eye);
         match kernel {
             Kernel::Packet => Setup::Packet(
-                Packed::new(&prepared),
+                Box::new(Packed::new(&prepared)),
                 camera.tables(BLOCK_W as u32, BLOCK_H as u32),
             ),
             Kernel::ScalarF32 => Setup::ScalarF32(prepared.cast(), camera.tables(1, 1)),

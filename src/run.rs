@@ -72,7 +72,7 @@ fn check_memory(width: u32, height: u32) -> Result<()> {
     if pixels > MAX_PIXELS {
         return Err(Error::usage(format!(
             "--size {width}x{height}: needs about {} MiB; at most {MAX_PIXELS} pixels per image",
-            pixels * BYTES_PER_PIXEL >> 20
+            (pixels * BYTES_PER_PIXEL) >> 20
         )));
     }
     Ok(())

@@ -71,7 +71,8 @@ pub fn sphere_x1<T: Real>(s: &SphereK<T>, d: V3<T>) -> Option<T> {
     let b = dot(s.oc, d);
     let l = [s.oc[0] - b * d[0], s.oc[1] - b * d[1], s.oc[2] - b * d[2]];
     let disc = s.r2 - dot(l, l);
-    if !(disc >= T::ZERO) {
+    // `partial_cmp` is `None` for a NaN disc: refused too
+    if disc.partial_cmp(&T::ZERO).is_none_or(|o| o.is_lt()) {
         return None;
     }
     let q = b + disc.sqrt();

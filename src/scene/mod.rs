@@ -25,7 +25,10 @@ pub struct CameraSpec {
 /// One primitive, in the scene's own f64 coordinates.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Shape {
-    Sphere { center: DVec3, radius: f64 },
+    Sphere {
+        center: DVec3,
+        radius: f64,
+    },
     Triangle([DVec3; 3]),
     /// A planar convex quad, vertices in perimeter order: the union of (A,B,C) and (A,C,D).
     Quad([DVec3; 4]),
