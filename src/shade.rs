@@ -218,12 +218,17 @@ fn splitmix64(x: u64) -> u64 {
     z ^ (z >> 31)
 }
 
-/// A vivid colour for primitive `id`: hue anywhere, saturation in [0.6, 1], value in [0.8, 1],
-/// so the brightest channel is at least 204 and no colour is near black (or grey).
+/// A vivid colour for primitive `id`: saturation in [0.6, 1], value in [0.8, 1], so the
+/// brightest channel is at least 204 and no colour is near black (or grey). The hue walks the
+/// golden-ratio sequence from a seeded start, `frac(start + id * 0.618...)`, so consecutive ids
+/// (neighbouring faces of one object, usually) are always far apart in hue; an independent
+/// hash per id put ids 1..3 of seed 0 within 6 degrees of each other.
 fn random_color(id: i32, seed: u64) -> [u8; 3] {
+    const GOLDEN: f64 = 0.618_033_988_749_894_9;
     let h = splitmix64(seed ^ (id as u32 as u64).wrapping_mul(0xD1B5_4A32_D192_ED03));
     let unit = |bits: u64| (bits & 0xFFFF) as f64 / 65535.0;
-    let hue = unit(h) * 6.0;
+    let start = unit(splitmix64(seed));
+    let hue = (start + id as f64 * GOLDEN).fract() * 6.0;
     let sat = 0.6 + 0.4 * unit(h >> 16);
     let val = 0.8 + 0.2 * unit(h >> 32);
     hsv_to_rgb(hue, sat, val)
