@@ -14,3 +14,11 @@ pub const MAX_PRIMITIVES: usize = 1 << 24;
 pub const MAX_LINE_BYTES: usize = 4096;
 /// Largest scene file, in bytes.
 pub const MAX_SCENE_BYTES: u64 = 1 << 30;
+/// Farthest any point of a primitive may be from the eye (a sphere's centre distance plus its
+/// radius, a polygon vertex's distance). The f32 kernels work on eye-relative values rounded
+/// from f64 and square them (sphere: `|oc|^2`, `l . l`): 3 * (1e18)^2 = 3e36 stays well inside
+/// f32 (max 3.4e38), with room for the rounding of a three-term sum.
+pub const MAX_EYE_DISTANCE: f64 = 1e18;
+/// Smallest sphere radius: the f32 kernels use `radius^2`, which must stay a normal f32
+/// (>= 1.2e-38): (1e-18)^2 = 1e-36.
+pub const MIN_RADIUS: f64 = 1e-18;

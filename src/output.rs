@@ -3,12 +3,19 @@
 //! Every file goes to a temporary file in the target's folder (`.{name}.{pid}.{n}.lanecast-tmp`),
 //! is flushed and synced, then renamed onto the target. A failed write removes the temporary
 //! file and leaves any existing target untouched; a missing folder is an error, never created.
+//!
+//! Interrupts: [`install_interrupt_cleanup`] installs a SIGINT/SIGTERM (Ctrl-C) handler that
+//! removes every temporary file created and not yet renamed, then exits with code 130. The
+//! registry of pending temporary files is locked across "create + register" and across
+//! "rename + unregister", so the handler sees either a temporary file (and removes it) or a
+//! finished rename (and leaves the complete target), never a half state.
 
 use std::ffi::OsString;
 use std::fs::{self, File, OpenOptions};
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Mutex, MutexGuard, Once};
 
 use image::ExtendedColorType;
 use image::ImageEncoder;
@@ -88,14 +95,49 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
 /// Distinguishes temporary files of concurrent writes within one process.
 static TMP_COUNTER: AtomicU64 = AtomicU64::new(0);
 
-/// Creates a fresh temporary file next to `path`; `create_new` never reuses or follows an
-/// existing entry (a stale file from a crashed run with the same pid just moves us on).
+/// Temporary files created and not yet renamed or removed: what an interrupt must clean up.
+static PENDING: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+fn pending() -> MutexGuard<'static, Vec<PathBuf>> {
+    // A panic while holding the lock leaves the list itself intact.
+    PENDING.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+fn unregister(list: &mut Vec<PathBuf>, tmp: &Path) {
+    list.retain(|p| p != tmp);
+}
+
+/// Exit code after an interrupt (128 + SIGINT, the shell convention).
+pub const INTERRUPTED_EXIT: i32 = 130;
+
+/// Installs (once per process) the Ctrl-C / SIGTERM handler: it removes every pending temporary
+/// file, prints `lanecast: interrupted` and exits with [`INTERRUPTED_EXIT`]. Any existing
+/// target file is untouched (it is only ever replaced by a rename of a complete file).
+pub fn install_interrupt_cleanup() {
+    static ONCE: Once = Once::new();
+    ONCE.call_once(|| {
+        let _ = ctrlc::set_handler(|| {
+            // Held until exit: no write can create or rename a temporary file after this.
+            let list = pending();
+            for tmp in list.iter() {
+                let _ = fs::remove_file(tmp);
+            }
+            eprintln!("lanecast: interrupted");
+            std::process::exit(INTERRUPTED_EXIT);
+        });
+    });
+}
+
+/// Creates a fresh temporary file next to `path` and registers it for interrupt cleanup;
+/// `create_new` never reuses or follows an existing entry (a stale file from a crashed run with
+/// the same pid just moves us on).
 fn create_temp(path: &Path) -> io::Result<(PathBuf, File)> {
     let name = path
         .file_name()
         .ok_or_else(|| io::Error::new(io::ErrorKind::InvalidInput, "not a file name"))?;
     let dir = parent_dir(path);
     let mut attempts = 0;
+    let mut list = pending();
     loop {
         let n = TMP_COUNTER.fetch_add(1, Ordering::Relaxed);
         let mut tmp_name = OsString::from(".");
@@ -103,7 +145,10 @@ fn create_temp(path: &Path) -> io::Result<(PathBuf, File)> {
         tmp_name.push(format!(".{}.{n}.lanecast-tmp", std::process::id()));
         let tmp = dir.join(tmp_name);
         match OpenOptions::new().write(true).create_new(true).open(&tmp) {
-            Ok(file) => return Ok((tmp, file)),
+            Ok(file) => {
+                list.push(tmp.clone());
+                return Ok((tmp, file));
+            }
             Err(e) if e.kind() == io::ErrorKind::AlreadyExists && attempts < 100 => attempts += 1,
             Err(e) => return Err(e),
         }
@@ -123,11 +168,16 @@ fn write_atomic_with(
         let file = w.into_inner().map_err(|e| e.into_error())?;
         file.sync_all()?;
         drop(file);
-        fs::rename(&tmp, path)
+        let mut list = pending();
+        fs::rename(&tmp, path)?;
+        unregister(&mut list, &tmp);
+        Ok(())
     })();
     if let Err(e) = result {
         // The file handle is closed by now; removal failing leaves nothing better to do.
+        let mut list = pending();
         let _ = fs::remove_file(&tmp);
+        unregister(&mut list, &tmp);
         return Err(fail(e));
     }
     sync_parent(path);

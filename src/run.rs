@@ -27,6 +27,8 @@ impl From<KernelArg> for Kernel {
 /// Loads the scene and makes its camera for the requested view.
 pub fn load_view(v: &ViewSettings) -> Result<(Scene, Camera)> {
     let scene = load_scene(&v.input)?;
+    // hardening (issue 5): reject primitives the f32 kernels cannot represent from this eye.
+    crate::scene::validate::f32_range(&scene)?;
     let fov = v.fov.or(scene.camera.fov_deg).unwrap_or(DEFAULT_FOV);
     let camera = Camera::new(&scene.camera, fov, v.width, v.height);
     Ok((scene, camera))
@@ -80,6 +82,8 @@ fn check_memory(width: u32, height: u32) -> Result<()> {
 
 /// Runs the render command.
 pub fn render_command(s: &RenderSettings) -> Result<()> {
+    // hardening (issue 5): Ctrl-C / SIGTERM remove pending temporary files, exit 130.
+    output::install_interrupt_cleanup();
     check_outputs(s)?;
     check_memory(s.view.width, s.view.height)?;
     let mut phases: Vec<(&str, Duration)> = Vec::new();

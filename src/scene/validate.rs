@@ -10,7 +10,9 @@
 //! infinity or underflows below the smallest normal f64, e.g. coordinates around 1e200 or
 //! 1e-200) is rejected, so that no NaN or infinity reaches the renderer.
 
-use super::CameraSpec;
+use super::{CameraSpec, Scene, Shape};
+use crate::error::Error;
+use crate::limits::{MAX_EYE_DISTANCE, MIN_RADIUS};
 use glam::DVec3;
 
 /// A triangle (or a corner of a quad) is degenerate when `|AB x AC| <= DEGENERATE_TOL * L^2`,
@@ -235,6 +237,74 @@ pub fn camera(c: &CameraSpec) -> Result<(), String> {
     }
     if let Some(deg) = c.fov_deg {
         fov(deg)?;
+    }
+    Ok(())
+}
+
+/// Scene-level check that the f32 kernels can represent every primitive seen from this eye.
+///
+/// The kernels compute eye-relative constants in f64 and round them to f32 (`soa`, `kernel`),
+/// so a scene is fine at any absolute position (coordinates of 3e38 with the eye nearby
+/// render), but each primitive must lie within `limits::MAX_EYE_DISTANCE` of the eye, a sphere
+/// radius must be at least `limits::MIN_RADIUS`, and the eye may not be so close to a polygon's
+/// plane (but off it) that the distance underflows f32. The first offending primitive is named
+/// by its line. Polygons with an area that underflows f32 are fine: their edge planes are
+/// normalised in f64 before rounding.
+pub fn f32_range(scene: &Scene) -> Result<(), Error> {
+    let eye = scene.camera.eye;
+    let err = |i: usize, msg: String| Error::input(&scene.source, scene.lines[i], 0, msg);
+    // NaN (never expected: inputs are finite) counts as too far.
+    let far = |d: f64| d.is_nan() || d > MAX_EYE_DISTANCE;
+    for (i, shape) in scene.shapes.iter().enumerate() {
+        match shape {
+            Shape::Sphere { center, radius } => {
+                if *radius < MIN_RADIUS {
+                    return Err(err(
+                        i,
+                        format!(
+                            "sphere radius {radius:e} is below the smallest supported radius \
+                             {MIN_RADIUS:e} (its square underflows f32)"
+                        ),
+                    ));
+                }
+                let d = (*center - eye).length() + radius;
+                if far(d) {
+                    return Err(err(
+                        i,
+                        format!(
+                            "sphere reaches {d:.3e} from the camera eye; the limit is \
+                             {MAX_EYE_DISTANCE:e} (f32 arithmetic would overflow)"
+                        ),
+                    ));
+                }
+            }
+            Shape::Triangle(v) => polygon_f32(v, eye, "triangle").map_err(|m| err(i, m))?,
+            Shape::Quad(v) => polygon_f32(v, eye, "quad").map_err(|m| err(i, m))?,
+        }
+    }
+    Ok(())
+}
+
+fn polygon_f32<const N: usize>(v: &[DVec3; N], eye: DVec3, kw: &str) -> Result<(), String> {
+    let rel = v.map(|p| p - eye);
+    for (k, r) in rel.iter().enumerate() {
+        let d = r.length();
+        if d.is_nan() || d > MAX_EYE_DISTANCE {
+            return Err(format!(
+                "{kw} vertex {} is {d:.3e} from the camera eye; the limit is \
+                 {MAX_EYE_DISTANCE:e} (f32 arithmetic would overflow)",
+                VERTEX_NAMES[k]
+            ));
+        }
+    }
+    // Distance from the eye to the plane, as the kernels measure it (normal from f64 vertices).
+    let normal = (v[1] - v[0]).cross(v[2] - v[0]).normalize_or_zero();
+    let p = rel.iter().map(|r| r.dot(normal)).sum::<f64>().abs() / N as f64;
+    if p > 0.0 && p < f64::from(f32::MIN_POSITIVE) {
+        return Err(format!(
+            "the camera eye is {p:.3e} from the plane of this {kw}: off the plane but too close \
+             to it for f32 arithmetic (move the eye into the plane or away from it)"
+        ));
     }
     Ok(())
 }
