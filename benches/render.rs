@@ -6,9 +6,10 @@
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use lanecast::camera::Camera;
-use lanecast::render::{Kernel, Setup};
+use lanecast::render::{Kernel, Setup, render_packet_blocks};
 use lanecast::run::DEFAULT_FOV;
 use lanecast::scene::load_scene;
+use lanecast::soa::{Packed, Prepared};
 use std::hint::black_box;
 use std::path::Path;
 use std::time::Duration;
@@ -21,17 +22,34 @@ const KERNELS: [(&str, Kernel); 3] = [
 
 fn seed_scenes(c: &mut Criterion) {
     let quick = std::env::var_os("LANECAST_BENCH_QUICK").is_some();
-    let sizes: &[(u32, u32)] = if quick { &[(640, 480)] } else { &[(640, 480), (1920, 1080)] };
+    let sizes: &[(u32, u32)] = if quick {
+        &[(640, 480)]
+    } else {
+        &[(640, 480), (1920, 1080)]
+    };
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     let pools: Vec<(usize, rayon::ThreadPool)> = [1, cores]
         .iter()
-        .map(|&n| (n, rayon::ThreadPoolBuilder::new().num_threads(n).build().unwrap()))
+        .map(|&n| {
+            (
+                n,
+                rayon::ThreadPoolBuilder::new()
+                    .num_threads(n)
+                    .build()
+                    .unwrap(),
+            )
+        })
         .collect();
     for n in 1..=7 {
         let path = format!("{}/scenes/scene{n}.sc", env!("CARGO_MANIFEST_DIR"));
         let scene = load_scene(Path::new(&path)).expect("seed scene parses");
         for &(w, h) in sizes {
-            let camera = Camera::new(&scene.camera, scene.camera.fov_deg.unwrap_or(DEFAULT_FOV), w, h);
+            let camera = Camera::new(
+                &scene.camera,
+                scene.camera.fov_deg.unwrap_or(DEFAULT_FOV),
+                w,
+                h,
+            );
             let mut g = c.benchmark_group(format!("scene{n}/{w}x{h}"));
             g.throughput(Throughput::Elements(w as u64 * h as u64));
             g.sample_size(10);
@@ -51,5 +69,38 @@ fn seed_scenes(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, seed_scenes);
+/// Packet block shape: 4x2 against 8x1 pixels per packet, one thread, at 1920x1080.
+fn block_shape(c: &mut Criterion) {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    let (w, h) = (1920, 1080);
+    for n in [2, 4, 6] {
+        let path = format!("{}/scenes/scene{n}.sc", env!("CARGO_MANIFEST_DIR"));
+        let scene = load_scene(Path::new(&path)).expect("seed scene parses");
+        let camera = Camera::new(
+            &scene.camera,
+            scene.camera.fov_deg.unwrap_or(DEFAULT_FOV),
+            w,
+            h,
+        );
+        let packed = Packed::new(&Prepared::new(&scene, camera.eye));
+        let tables = camera.tables::<f32>(8, 2);
+        let mut g = c.benchmark_group(format!("block_shape/scene{n}"));
+        g.throughput(Throughput::Elements(w as u64 * h as u64));
+        g.sample_size(10);
+        g.measurement_time(Duration::from_secs(2));
+        let (w, h) = (w as usize, h as usize);
+        g.bench_function("4x2", |b| {
+            b.iter(|| pool.install(|| black_box(render_packet_blocks::<4>(&packed, &tables, w, h))))
+        });
+        g.bench_function("8x1", |b| {
+            b.iter(|| pool.install(|| black_box(render_packet_blocks::<8>(&packed, &tables, w, h))))
+        });
+        g.finish();
+    }
+}
+
+criterion_group!(benches, seed_scenes, block_shape);
 criterion_main!(benches);

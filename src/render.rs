@@ -35,8 +35,20 @@ impl<D: Copy> Frame<D> {
     }
 }
 
-/// Renders with the 8-lane packet kernel. `tables` padded to whole blocks.
+/// Renders with the 8-lane packet kernel in `BLOCK_W` x `BLOCK_H` blocks. `tables` padded to
+/// whole blocks.
 pub fn render_packet(
+    p: &Packed,
+    tables: &RayTables<f32>,
+    width: usize,
+    height: usize,
+) -> Frame<f32> {
+    render_packet_blocks::<BLOCK_W>(p, tables, width, height)
+}
+
+/// [`render_packet`] with blocks `BW` pixels wide and `LANES / BW` high (the block-shape bench
+/// compares 4x2 with 8x1). `tables` padded to whole blocks of that shape.
+pub fn render_packet_blocks<const BW: usize>(
     p: &Packed,
     tables: &RayTables<f32>,
     width: usize,
@@ -52,14 +64,14 @@ pub fn render_packet(
         .for_each(|(s, (ids, depth))| {
             let y_start = s * STRIP_ROWS;
             let rows = ids.len() / width;
-            for by in (0..rows).step_by(BLOCK_H) {
-                for bx in (0..width).step_by(BLOCK_W) {
-                    let (d, active) = block_rays(tables, bx, y_start + by, width, height);
+            for by in (0..rows).step_by(LANES / BW) {
+                for bx in (0..width).step_by(BW) {
+                    let (d, active) = block_rays::<BW>(tables, bx, y_start + by, width, height);
                     let mut hit = Hit8::new(active);
                     trace_x8(p, &d, &mut hit);
                     let (t, id) = (hit.t.to_array(), hit.id.to_array());
                     for lane in 0..LANES {
-                        let (x, y) = (bx + lane % BLOCK_W, by + lane / BLOCK_W);
+                        let (x, y) = (bx + lane % BW, by + lane / BW);
                         if x < width && y < rows {
                             ids[y * width + x] = id[lane] as i32;
                             depth[y * width + x] = t[lane];
