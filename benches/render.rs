@@ -5,11 +5,11 @@
 //! `LANECAST_BENCH_QUICK=1` keeps one size (640x480) and fewer samples, for a fast look.
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use lanecast::accel::Accel;
 use lanecast::camera::Camera;
-use lanecast::render::{Kernel, Setup, render_packet_blocks};
+use lanecast::render::{Kernel, PacketScene, Setup, render_packet_blocks};
 use lanecast::run::DEFAULT_FOV;
 use lanecast::scene::load_scene;
-use lanecast::soa::{Packed, Prepared};
 use std::hint::black_box;
 use std::path::Path;
 use std::time::Duration;
@@ -85,7 +85,7 @@ fn block_shape(c: &mut Criterion) {
             w,
             h,
         );
-        let packed = Packed::new(&Prepared::new(&scene, camera.eye));
+        let packed = PacketScene::new(&scene, camera.eye, Accel::None);
         let tables = camera.tables::<f32>(8, 2);
         let mut g = c.benchmark_group(format!("block_shape/scene{n}"));
         g.throughput(Throughput::Elements(w as u64 * h as u64));

@@ -88,6 +88,27 @@ struct View {
     /// Worker threads [default: all cores].
     #[arg(long, value_name = "N")]
     threads: Option<usize>,
+    /// Packet kernel acceleration: auto (bvh from 16 primitives on), none (test every
+    /// primitive), bvh.
+    #[arg(long, value_enum, default_value = "auto")]
+    accel: AccelArg,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AccelArg {
+    Auto,
+    None,
+    Bvh,
+}
+
+impl From<AccelArg> for crate::accel::Accel {
+    fn from(a: AccelArg) -> crate::accel::Accel {
+        match a {
+            AccelArg::Auto => crate::accel::Accel::Auto,
+            AccelArg::None => crate::accel::Accel::None,
+            AccelArg::Bvh => crate::accel::Accel::Bvh,
+        }
+    }
 }
 
 #[derive(Args, Debug)]
@@ -155,6 +176,7 @@ pub struct ViewSettings {
     /// From `-fov`; the scene's value or 60 applies when `None`.
     pub fov: Option<f64>,
     pub threads: Option<usize>,
+    pub accel: crate::accel::Accel,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -243,6 +265,7 @@ fn view(v: View) -> Result<ViewSettings> {
         height,
         fov: v.fov,
         threads: v.threads,
+        accel: v.accel.into(),
     })
 }
 

@@ -9,6 +9,7 @@
 //!
 //! Depth differences are measured where both kernels hit the same primitive.
 
+use crate::accel::Accel;
 use crate::camera::Camera;
 use crate::cli::CompareSettings;
 use crate::error::{Error, Result};
@@ -17,11 +18,11 @@ use crate::kernel::polygon::{PolyK, QuadK, TriangleK, polygon_x1_within};
 use crate::kernel::sphere::{SphereK, sphere_x1};
 use crate::output;
 use crate::real::V3;
-use crate::render::{Frame, render_packet, render_scalar};
+use crate::render::{Frame, PacketScene, render_packet, render_scalar};
 use crate::run::{load_view, pool};
 use crate::scene::{Scene, Shape};
 use crate::shade::{ColorMode, Variation, shade};
-use crate::soa::{Packed, Prepared};
+use crate::soa::Prepared;
 use glam::DVec3;
 
 /// Two hits closer than this relative distance are a genuine tie. The packet kernel's distances
@@ -96,11 +97,22 @@ fn classify(scene: &Scene, eye: DVec3, d: V3<f64>, a: i32, b: i32) -> u8 {
     if near_edge(sa) || near_edge(sb) { 2 } else { 3 }
 }
 
-/// Renders `scene` with both kernels (in the current rayon pool) and compares them.
+/// Renders `scene` with both kernels (in the current rayon pool) and compares them, the packet
+/// kernel with automatic acceleration.
 pub fn compare(scene: &Scene, camera: &Camera) -> (Report, Frame<f64>) {
+    compare_with(scene, camera, Accel::Auto)
+}
+
+/// [`compare`] with the packet kernel's acceleration chosen by the caller.
+pub fn compare_with(scene: &Scene, camera: &Camera, accel: Accel) -> (Report, Frame<f64>) {
     let (w, h) = (camera.width as usize, camera.height as usize);
     let prepared = Prepared::new(scene, camera.eye);
-    let packet = render_packet(&Packed::new(&prepared), &camera.tables(4, 2), w, h);
+    let packet = render_packet(
+        &PacketScene::new(scene, camera.eye, accel),
+        &camera.tables(4, 2),
+        w,
+        h,
+    );
     let t64 = camera.tables::<f64>(1, 1);
     let oracle = render_scalar(&prepared, &t64, w, h);
     let mut r = Report {
@@ -176,7 +188,8 @@ pub fn compare_command(s: &CompareSettings) -> Result<()> {
         }
     }
     let (scene, camera) = load_view(&s.view)?;
-    let (report, oracle) = pool(s.view.threads)?.install(|| compare(&scene, &camera));
+    let (report, oracle) =
+        pool(s.view.threads)?.install(|| compare_with(&scene, &camera, s.view.accel));
     let r = &report;
     let ppm = |n: usize| n as f64 * 1e6 / r.pixels.max(1) as f64;
     println!("scene       {}", s.view.input.display());

@@ -2,6 +2,7 @@
 //! nearest hit among spheres, triangles and quads, tested 8 rays at a time in `wide::f32x8`
 //! lanes against structure-of-arrays primitives, with a plain scalar path as the oracle.
 
+pub mod accel;
 pub mod camera;
 pub mod cli;
 pub mod compare;

@@ -3,6 +3,7 @@
 //! Every pixel's result depends only on the pixel, so output is bit-identical at any thread
 //! count; the caller chooses the count by running inside a rayon pool.
 
+use crate::accel::{Accel, Bvh, bvh::trace_bvh_x8};
 use crate::camera::RayTables;
 use crate::kernel::packet::{BLOCK_H, BLOCK_W, block_rays, trace_x8};
 use crate::kernel::scalar::trace_x1;
@@ -10,6 +11,7 @@ use crate::kernel::{Hit8, LANES};
 use crate::real::Real;
 use crate::soa::{Packed, Prepared};
 use rayon::prelude::*;
+use wide::f32x8;
 
 /// Image rows per strip: the unit of work a thread takes. A multiple of `BLOCK_H`.
 pub const STRIP_ROWS: usize = 8;
@@ -35,10 +37,56 @@ impl<D: Copy> Frame<D> {
     }
 }
 
+/// What the packet kernel traces against: the SoA stores, and the BVH over them when the
+/// acceleration is `bvh` (the stores are then in the BVH's leaf order).
+#[derive(Debug, Clone)]
+pub struct PacketScene {
+    pub packed: Packed,
+    pub bvh: Option<Bvh>,
+}
+
+impl PacketScene {
+    /// Prepares `scene` seen from `eye` with acceleration `accel` (`auto` resolved by size).
+    pub fn new(scene: &crate::scene::Scene, eye: glam::DVec3, accel: Accel) -> PacketScene {
+        let prepared = Prepared::new(scene, eye);
+        match accel.resolve(scene.shapes.len()) {
+            Accel::Bvh => {
+                let (bvh, reordered) = Bvh::new(&prepared, scene, eye);
+                PacketScene {
+                    packed: Packed::new(&reordered),
+                    bvh: Some(bvh),
+                }
+            }
+            _ => PacketScene {
+                packed: Packed::new(&prepared),
+                bvh: None,
+            },
+        }
+    }
+
+    /// The acceleration in use.
+    pub fn accel(&self) -> Accel {
+        if self.bvh.is_some() {
+            Accel::Bvh
+        } else {
+            Accel::None
+        }
+    }
+
+    /// Nearest hits of eight rays.
+    #[inline(always)]
+    pub fn trace_x8(&self, d: &[f32x8; 3], hit: &mut Hit8) {
+        match &self.bvh {
+            Some(bvh) => trace_bvh_x8(&self.packed, bvh, d, hit),
+            None => trace_x8(&self.packed, d, hit),
+        }
+    }
+}
+
 /// Renders with the 8-lane packet kernel in `BLOCK_W` x `BLOCK_H` blocks. `tables` padded to
 /// whole blocks.
 pub fn render_packet(
-    p: &Packed,
+    p: &PacketScene,
     tables: &RayTables<f32>,
     width: usize,
     height: usize,
@@ -49,7 +97,7 @@ pub fn render_packet(
 /// [`render_packet`] with blocks `BW` pixels wide and `LANES / BW` high (the block-shape bench
 /// compares 4x2 with 8x1). `tables` padded to whole blocks of that shape.
 pub fn render_packet_blocks<const BW: usize>(
-    p: &Packed,
+    p: &PacketScene,
     tables: &RayTables<f32>,
     width: usize,
     height: usize,
@@ -68,7 +116,7 @@ pub fn render_packet_blocks<const BW: usize>(
                 for bx in (0..width).step_by(BW) {
                     let (d, active) = block_rays::<BW>(tables, bx, y_start + by, width, height);
                     let mut hit = Hit8::new(active);
-                    trace_x8(p, &d, &mut hit);
+                    p.trace_x8(&d, &mut hit);
                     let (t, id) = (hit.t.to_array(), hit.id.to_array());
                     for lane in 0..LANES {
                         let (x, y) = (bx + lane % BW, by + lane / BW);
@@ -120,25 +168,48 @@ pub enum Kernel {
 
 /// Everything a kernel needs before its first ray: the setup phase.
 pub enum Setup {
-    Packet(Box<Packed>, RayTables<f32>),
+    Packet(Box<PacketScene>, RayTables<f32>),
     ScalarF32(Prepared<f32>, RayTables<f32>),
     ScalarF64(Prepared<f64>, RayTables<f64>),
 }
 
 impl Setup {
+    /// The setup of `kernel` for `scene` seen by `camera`, with automatic acceleration.
     pub fn new(
         kernel: Kernel,
         scene: &crate::scene::Scene,
         camera: &crate::camera::Camera,
     ) -> Setup {
-        let prepared = Prepared::new(scene, camera.eye);
+        Setup::with_accel(kernel, Accel::Auto, scene, camera)
+    }
+
+    /// As [`Setup::new`], with the packet kernel's acceleration chosen by the caller (the
+    /// scalar kernels always test every primitive: they are the references).
+    pub fn with_accel(
+        kernel: Kernel,
+        accel: Accel,
+        scene: &crate::scene::Scene,
+        camera: &crate::camera::Camera,
+    ) -> Setup {
         match kernel {
             Kernel::Packet => Setup::Packet(
-                Box::new(Packed::new(&prepared)),
+                Box::new(PacketScene::new(scene, camera.eye, accel)),
                 camera.tables(BLOCK_W as u32, BLOCK_H as u32),
             ),
-            Kernel::ScalarF32 => Setup::ScalarF32(prepared.cast(), camera.tables(1, 1)),
-            Kernel::ScalarF64 => Setup::ScalarF64(prepared, camera.tables(1, 1)),
+            Kernel::ScalarF32 => {
+                Setup::ScalarF32(Prepared::new(scene, camera.eye).cast(), camera.tables(1, 1))
+            }
+            Kernel::ScalarF64 => {
+                Setup::ScalarF64(Prepared::new(scene, camera.eye), camera.tables(1, 1))
+            }
+        }
+    }
+
+    /// The acceleration in use (`none` for the scalar kernels).
+    pub fn accel(&self) -> Accel {
+        match self {
+            Setup::Packet(p, _) => p.accel(),
+            _ => Accel::None,
         }
     }
 

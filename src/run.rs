@@ -97,7 +97,7 @@ pub fn render_command(s: &RenderSettings) -> Result<()> {
     lap("parse", &mut phases);
 
     let pool = pool(s.view.threads)?;
-    let setup = Setup::new(s.kernel.into(), &scene, &camera);
+    let setup = Setup::with_accel(s.kernel.into(), s.view.accel, &scene, &camera);
     lap("setup", &mut phases);
 
     let (w, h) = (s.view.width as usize, s.view.height as usize);
@@ -128,16 +128,28 @@ pub fn render_command(s: &RenderSettings) -> Result<()> {
     if s.time {
         eprint!(
             "{}",
-            time_report(&s.view.input, w * h, pool.current_num_threads(), &phases)
+            time_report(
+                &s.view.input,
+                w * h,
+                pool.current_num_threads(),
+                setup.accel().name(),
+                &phases
+            )
         );
     }
     Ok(())
 }
 
 /// The `-time` report: one line per phase, then the primary ray rate of the render phase.
-fn time_report(input: &Path, pixels: usize, threads: usize, phases: &[(&str, Duration)]) -> String {
+fn time_report(
+    input: &Path,
+    pixels: usize,
+    threads: usize,
+    accel: &str,
+    phases: &[(&str, Duration)],
+) -> String {
     let mut out = format!(
-        "lanecast: {} ({pixels} primary rays, {threads} threads)\n",
+        "lanecast: {} ({pixels} primary rays, {threads} threads, accel {accel})\n",
         input.display()
     );
     for (name, d) in phases {

@@ -42,6 +42,15 @@ impl<K> Group<K> {
         self.k.is_empty()
     }
 
+    /// Appends element `i` of `other`.
+    pub(crate) fn push_from(&mut self, other: &Group<K>, i: usize)
+    where
+        K: Clone,
+    {
+        self.k.push(other.k[i].clone());
+        self.id.push(other.id[i]);
+    }
+
     fn map<L>(&self, f: impl Fn(&K) -> L) -> Group<L> {
         Group {
             k: self.k.iter().map(f).collect(),

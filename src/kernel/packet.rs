@@ -6,7 +6,8 @@ use crate::camera::RayTables;
 use crate::kernel::polygon::polygon_x8;
 use crate::kernel::sphere::sphere_x8;
 use crate::kernel::{Hit8, LANES};
-use crate::soa::{Packed, Polygons};
+use crate::soa::{Packed, Polygons, Spheres};
+use std::ops::Range;
 use wide::f32x8;
 
 /// Pixel block of one packet: `BLOCK_W` x `BLOCK_H` = `LANES`; lane i covers pixel
@@ -15,22 +16,34 @@ use wide::f32x8;
 pub const BLOCK_W: usize = 4;
 pub const BLOCK_H: usize = LANES / BLOCK_W;
 
-/// Nearest hits of the rays `d` (unit directions from the eye), folded into `hit`.
+/// Nearest hits of the rays `d` (unit directions from the eye) among every primitive, folded
+/// into `hit`: the brute-force driver (`--accel none`).
 #[inline]
 pub fn trace_x8(p: &Packed, d: &[f32x8; 3], hit: &mut Hit8) {
-    let s = &p.spheres;
-    for i in 0..s.len() {
+    spheres_x8(&p.spheres, 0..p.spheres.len(), d, hit);
+    polygons_x8(&p.triangles, 0..p.triangles.len(), d, hit);
+    polygons_x8(&p.quads, 0..p.quads.len(), d, hit);
+}
+
+/// The spheres `range` of the store against eight rays.
+#[inline(always)]
+pub fn spheres_x8(s: &Spheres, range: Range<usize>, d: &[f32x8; 3], hit: &mut Hit8) {
+    for i in range {
         if let Some((mask, t)) = sphere_x8(&s.get(i), d) {
             hit.update(mask, t, s.id[i]);
         }
     }
-    polygons_x8(&p.triangles, d, hit);
-    polygons_x8(&p.quads, d, hit);
 }
 
+/// The polygons `range` of a triangle or quad store against eight rays.
 #[inline(always)]
-fn polygons_x8<const N: usize>(g: &Polygons<N>, d: &[f32x8; 3], hit: &mut Hit8) {
-    for i in 0..g.len() {
+pub fn polygons_x8<const N: usize>(
+    g: &Polygons<N>,
+    range: Range<usize>,
+    d: &[f32x8; 3],
+    hit: &mut Hit8,
+) {
+    for i in range {
         if let Some((mask, t)) = polygon_x8(&g.get(i), d) {
             hit.update(mask, t, g.id[i]);
         }

@@ -1,0 +1,266 @@
+//! BVH construction: binned surface area heuristic (Wald, "On fast Construction of SAH-based
+//! Bounding Volume Hierarchies", 2007) over primitive boxes relative to the eye, in f64.
+//!
+//! Boxes are conservative for what the leaf kernels can hit: each primitive's box is padded by
+//! [`PAD_REL`] of its distance from the eye (covering the polygons' 8u edge tolerance, the
+//! rounding of ray directions and of the f32 slab test), and rounded outward to f32.
+
+use crate::soa::{Group, Prepared};
+use glam::DVec3;
+
+/// Box padding, relative to the largest eye-relative coordinate magnitude of the box: 2e-6 is
+/// about 33u_f32; the polygons' edge tolerance widens them by 8u radians (8u of distance), the
+/// ray directions err by ~3u and the slab test by ~3u.
+pub const PAD_REL: f64 = 2e-6;
+/// Most primitives in a leaf.
+pub const MAX_LEAF: usize = 4;
+/// SAH bins per axis.
+const BINS: usize = 12;
+
+/// An axis-aligned box in f64.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Aabb {
+    pub min: DVec3,
+    pub max: DVec3,
+}
+
+impl Aabb {
+    pub const EMPTY: Aabb = Aabb {
+        min: DVec3::INFINITY,
+        max: DVec3::NEG_INFINITY,
+    };
+
+    pub fn of_points(points: &[DVec3]) -> Aabb {
+        points.iter().fold(Aabb::EMPTY, |b, &p| b.grow_point(p))
+    }
+
+    pub fn grow_point(self, p: DVec3) -> Aabb {
+        Aabb {
+            min: self.min.min(p),
+            max: self.max.max(p),
+        }
+    }
+
+    pub fn union(self, o: Aabb) -> Aabb {
+        Aabb {
+            min: self.min.min(o.min),
+            max: self.max.max(o.max),
+        }
+    }
+
+    pub fn centre(self) -> DVec3 {
+        (self.min + self.max) * 0.5
+    }
+
+    /// Half the surface area (the SAH only compares areas).
+    pub fn half_area(self) -> f64 {
+        let e = (self.max - self.min).max(DVec3::ZERO);
+        e.x * e.y + e.y * e.z + e.z * e.x
+    }
+
+    /// The box padded by `PAD_REL` of its largest coordinate magnitude.
+    pub fn padded(self) -> Aabb {
+        let m = self.min.abs().max(self.max.abs()).max_element();
+        let pad = DVec3::splat(m * PAD_REL);
+        Aabb {
+            min: self.min - pad,
+            max: self.max + pad,
+        }
+    }
+}
+
+/// What the build produces: nodes in depth-first order (node 0 is the root), and for each leaf
+/// the primitives it holds, as (type, index in that type's group).
+#[derive(Debug, Clone)]
+pub struct Built {
+    pub nodes: Vec<BuildNode>,
+    pub leaves: Vec<Vec<(u8, u32)>>,
+}
+
+#[derive(Debug, Clone, Copy)]
+pub struct BuildNode {
+    pub bounds: Aabb,
+    /// Inner node: index of the right child (the left child follows the node). Leaf: leaf index.
+    pub index: u32,
+    pub leaf: bool,
+    /// Split axis of an inner node (for front-to-back order).
+    pub axis: u8,
+}
+
+/// Type tags of `Built::leaves`.
+pub const SPHERE: u8 = 0;
+pub const TRIANGLE: u8 = 1;
+pub const QUAD: u8 = 2;
+
+struct Item {
+    bounds: Aabb,
+    centre: DVec3,
+    tag: (u8, u32),
+}
+
+/// Eye-relative, padded boxes of every prepared primitive, from the scene's shapes.
+pub fn boxes<T>(
+    p: &Prepared<T>,
+    shapes: &[crate::scene::Shape],
+    eye: DVec3,
+) -> Vec<(Aabb, (u8, u32))> {
+    use crate::scene::Shape;
+    let mut out = Vec::with_capacity(p.spheres.len() + p.triangles.len() + p.quads.len());
+    let mut add = |tag: u8, g_ids: &[i32]| {
+        for (i, &id) in g_ids.iter().enumerate() {
+            let b = match &shapes[id as usize] {
+                Shape::Sphere { center, radius } => {
+                    let c = *center - eye;
+                    Aabb {
+                        min: c - DVec3::splat(*radius),
+                        max: c + DVec3::splat(*radius),
+                    }
+                }
+                Shape::Triangle(v) => Aabb::of_points(&v.map(|p| p - eye)),
+                Shape::Quad(v) => Aabb::of_points(&v.map(|p| p - eye)),
+            };
+            out.push((b.padded(), (tag, i as u32)));
+        }
+    };
+    add(SPHERE, &p.spheres.id);
+    add(TRIANGLE, &p.triangles.id);
+    add(QUAD, &p.quads.id);
+    out
+}
+
+/// Builds the hierarchy over `boxes`.
+pub fn build(boxes: Vec<(Aabb, (u8, u32))>) -> Built {
+    let mut items: Vec<Item> = boxes
+        .into_iter()
+        .map(|(b, tag)| Item {
+            bounds: b,
+            centre: b.centre(),
+            tag,
+        })
+        .collect();
+    let mut built = Built {
+        nodes: Vec::new(),
+        leaves: Vec::new(),
+    };
+    if !items.is_empty() {
+        let n = items.len();
+        split(&mut items[..n], &mut built);
+    }
+    built
+}
+
+/// Appends the subtree over `items` (depth first) and returns its node index.
+fn split(items: &mut [Item], out: &mut Built) -> usize {
+    let bounds = items.iter().fold(Aabb::EMPTY, |b, it| b.union(it.bounds));
+    let me = out.nodes.len();
+    out.nodes.push(BuildNode {
+        bounds,
+        index: 0,
+        leaf: true,
+        axis: 0,
+    });
+    let make_leaf = |items: &mut [Item], out: &mut Built| {
+        out.nodes[me].index = out.leaves.len() as u32;
+        out.leaves.push(items.iter().map(|it| it.tag).collect());
+    };
+    if items.len() <= MAX_LEAF {
+        make_leaf(items, out);
+        return me;
+    }
+    match best_split(items) {
+        Some((axis, mid)) => {
+            out.nodes[me].leaf = false;
+            out.nodes[me].axis = axis as u8;
+            let (l, r) = items.split_at_mut(mid);
+            split(l, out);
+            let right = split(r, out);
+            out.nodes[me].index = right as u32;
+        }
+        None => make_leaf(items, out),
+    }
+    me
+}
+
+/// Binned SAH: the best (axis, count on the left) after partitioning `items` in place, or `None`
+/// when no split beats a leaf (and the leaf is small enough) or all centres coincide.
+fn best_split(items: &mut [Item]) -> Option<(usize, usize)> {
+    let cb = items
+        .iter()
+        .fold(Aabb::EMPTY, |b, it| b.grow_point(it.centre));
+    let extent = cb.max - cb.min;
+    let mut best: Option<(f64, usize, f64)> = None; // (cost, axis, split coordinate)
+    for axis in 0..3 {
+        if extent[axis] <= 0.0 {
+            continue;
+        }
+        let bin_of =
+            |c: f64| (((c - cb.min[axis]) / extent[axis] * BINS as f64) as usize).min(BINS - 1);
+        let mut bins = [(Aabb::EMPTY, 0usize); BINS];
+        for it in items.iter() {
+            let b = &mut bins[bin_of(it.centre[axis])];
+            b.0 = b.0.union(it.bounds);
+            b.1 += 1;
+        }
+        let mut right = [(0.0, 0usize); BINS];
+        let (mut acc, mut cnt) = (Aabb::EMPTY, 0);
+        for i in (1..BINS).rev() {
+            acc = acc.union(bins[i].0);
+            cnt += bins[i].1;
+            right[i] = (acc.half_area(), cnt);
+        }
+        let (mut acc, mut cnt) = (Aabb::EMPTY, 0);
+        for i in 0..BINS - 1 {
+            acc = acc.union(bins[i].0);
+            cnt += bins[i].1;
+            let (ra, rc) = right[i + 1];
+            if cnt == 0 || rc == 0 {
+                continue;
+            }
+            let cost = acc.half_area() * cnt as f64 + ra * rc as f64;
+            if best.is_none_or(|b| cost < b.0) {
+                let at = cb.min[axis] + extent[axis] * (i + 1) as f64 / BINS as f64;
+                best = Some((cost, axis, at));
+            }
+        }
+    }
+    let (cost, axis, at) = best?;
+    let parent = items.iter().fold(Aabb::EMPTY, |b, it| b.union(it.bounds));
+    // Leaf cost: one box test saved, every primitive tested. Split when cheaper or too many.
+    let leaf_cost = parent.half_area() * items.len() as f64;
+    if cost >= leaf_cost && items.len() <= MAX_LEAF * 4 {
+        return None;
+    }
+    let mut mid = 0;
+    for i in 0..items.len() {
+        if items[i].centre[axis] < at {
+            items.swap(i, mid);
+            mid += 1;
+        }
+    }
+    (mid > 0 && mid < items.len()).then_some((axis, mid))
+}
+
+/// The groups of `p` reordered leaf by leaf, and for each leaf its range in each reordered group
+/// (spheres, triangles, quads).
+pub fn reorder<T: Clone>(p: &Prepared<T>, built: &Built) -> (Prepared<T>, Vec<[(u32, u32); 3]>) {
+    let mut out = Prepared {
+        spheres: Group::default(),
+        triangles: Group::default(),
+        quads: Group::default(),
+    };
+    let mut ranges = Vec::with_capacity(built.leaves.len());
+    for leaf in &built.leaves {
+        let start = [out.spheres.len(), out.triangles.len(), out.quads.len()].map(|n| n as u32);
+        for &(tag, i) in leaf {
+            let i = i as usize;
+            match tag {
+                SPHERE => out.spheres.push_from(&p.spheres, i),
+                TRIANGLE => out.triangles.push_from(&p.triangles, i),
+                _ => out.quads.push_from(&p.quads, i),
+            }
+        }
+        let end = [out.spheres.len(), out.triangles.len(), out.quads.len()].map(|n| n as u32);
+        ranges.push([(start[0], end[0]), (start[1], end[1]), (start[2], end[2])]);
+    }
+    (out, ranges)
+}
