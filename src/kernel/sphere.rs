@@ -18,7 +18,10 @@
 //! Precision (f32, u = 2^-24): `b` errs by ~3u|oc|, `l` by ~4u|oc| per component, so the
 //! silhouette moves by about 4u|oc| in absolute terms: 2.4e-3 for a sphere 1e4 away, a small
 //! fraction of a sphere of radius 1 (the textbook `b^2 - c` loses the whole sphere there, since
-//! b^2 ~ 1e8 has an ulp of 8). The distance `t = c/q` errs by ~5u relative. Known to fail: a
+//! b^2 ~ 1e8 has an ulp of 8). The distance `t = c/q` errs by ~5u relative where the ray meets
+//! the sphere well inside its silhouette; towards the silhouette `sqrt(disc)` magnifies the
+//! absolute error of `disc` (~8u|oc|^2) by 1/(2 sqrt(disc)), so tangent rays lose precision
+//! (measured: 1.6e-5 relative at the outline of scene5's spheres). Known to fail: a
 //! sphere whose radius is below ~4u|oc| (smaller than f32 can place it) flickers at its edge;
 //! rays exactly tangent to a sphere may hit or miss (disc ~ 0 within rounding).
 //! Proven by: `tests::far_small_sphere_*`, `tests::x8_equals_x1_*`, and the agreement tests.
