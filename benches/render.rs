@@ -93,10 +93,10 @@ fn block_shape(c: &mut Criterion) {
         g.measurement_time(Duration::from_secs(2));
         let (w, h) = (w as usize, h as usize);
         g.bench_function("4x2", |b| {
-            b.iter(|| pool.install(|| black_box(render_packet_blocks::<4>(&packed, &tables, w, h))))
+            b.iter(|| pool.install(|| black_box(render_packet_blocks::<4>(&packed, &tables, w, h, None))))
         });
         g.bench_function("8x1", |b| {
-            b.iter(|| pool.install(|| black_box(render_packet_blocks::<8>(&packed, &tables, w, h))))
+            b.iter(|| pool.install(|| black_box(render_packet_blocks::<8>(&packed, &tables, w, h, None))))
         });
         g.finish();
     }

@@ -143,6 +143,14 @@ struct RenderArgs {
     /// Also write per-pixel hit distances (float32, +inf = background) as a (H, W) .npy file.
     #[arg(long, value_name = "FILE.npy")]
     depth: Option<PathBuf>,
+    /// Render K times and report the best and median render time (-time, --stats).
+    #[arg(long, value_name = "K", default_value_t = 1,
+          value_parser = clap::value_parser!(u32).range(1..=10_000))]
+    repeat: u32,
+    /// Write a JSON record of the run: scene, size, primitives, kernel, method, acceleration,
+    /// threads, SIMD width, phase times, best and median render, rays/s, peak memory.
+    #[arg(long, value_name = "FILE.json")]
+    stats: Option<PathBuf>,
 }
 
 #[derive(Args, Debug)]
@@ -165,6 +173,16 @@ pub enum KernelArg {
     Scalar,
     #[value(name = "scalar-f32")]
     ScalarF32,
+}
+
+impl KernelArg {
+    pub fn name(self) -> &'static str {
+        match self {
+            KernelArg::Simd => "simd",
+            KernelArg::Scalar => "scalar",
+            KernelArg::ScalarF32 => "scalar-f32",
+        }
+    }
 }
 
 /// What the shared options resolve to.
@@ -190,6 +208,8 @@ pub struct RenderSettings {
     pub seed: u64,
     pub ids: Option<PathBuf>,
     pub depth: Option<PathBuf>,
+    pub repeat: u32,
+    pub stats: Option<PathBuf>,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -246,6 +266,8 @@ pub fn parse(args: impl IntoIterator<Item = OsString>) -> Result<Command> {
                 seed: r.seed,
                 ids: r.ids,
                 depth: r.depth,
+                repeat: r.repeat,
+                stats: r.stats,
             }))
         }
     }

@@ -8,14 +8,17 @@ pub mod cli;
 pub mod compare;
 pub mod error;
 pub mod kernel;
+pub mod lab;
 pub mod limits;
 pub mod output;
+pub mod progress;
 pub mod real;
 pub mod render;
 pub mod run;
 pub mod scene;
 pub mod shade;
 pub mod soa;
+pub mod stats;
 
 pub use error::{Error, Result};
 

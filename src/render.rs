@@ -11,6 +11,7 @@ use crate::kernel::{Hit8, LANES};
 use crate::real::Real;
 use crate::soa::{Packed, Prepared};
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use wide::f32x8;
 
 /// Image rows per strip: the unit of work a thread takes. A multiple of `BLOCK_H`.
@@ -83,6 +84,32 @@ impl PacketScene {
     }
 }
 
+/// Runs `f(first_row, ids, depth)` on every strip of `frame` in parallel, counting finished
+/// strips in `progress`.
+fn for_each_strip<D: Copy + Send>(
+    frame: &mut Frame<D>,
+    progress: Option<&AtomicUsize>,
+    f: impl Fn(usize, &mut [i32], &mut [D]) + Sync,
+) {
+    let strip = frame.width * STRIP_ROWS;
+    frame
+        .ids
+        .par_chunks_mut(strip)
+        .zip(frame.depth.par_chunks_mut(strip))
+        .enumerate()
+        .for_each(|(s, (ids, depth))| {
+            f(s * STRIP_ROWS, ids, depth);
+            if let Some(p) = progress {
+                p.fetch_add(1, Ordering::Relaxed);
+            }
+        });
+}
+
+/// Strips in a `height`-row image (the unit [`Setup::render_counting`] counts).
+pub fn strip_count(height: usize) -> usize {
+    height.div_ceil(STRIP_ROWS)
+}
+
 /// Renders with the 8-lane packet kernel in `BLOCK_W` x `BLOCK_H` blocks. `tables` padded to
 /// whole blocks.
 pub fn render_packet(
@@ -91,43 +118,38 @@ pub fn render_packet(
     width: usize,
     height: usize,
 ) -> Frame<f32> {
-    render_packet_blocks::<BLOCK_W>(p, tables, width, height)
+    render_packet_blocks::<BLOCK_W>(p, tables, width, height, None)
 }
 
 /// [`render_packet`] with blocks `BW` pixels wide and `LANES / BW` high (the block-shape bench
-/// compares 4x2 with 8x1). `tables` padded to whole blocks of that shape.
+/// compares 4x2 with 8x1), counting finished strips in `progress`. `tables` padded to whole
+/// blocks of that shape.
 pub fn render_packet_blocks<const BW: usize>(
     p: &PacketScene,
     tables: &RayTables<f32>,
     width: usize,
     height: usize,
+    progress: Option<&AtomicUsize>,
 ) -> Frame<f32> {
     let mut frame = Frame::new(width, height, f32::INFINITY);
-    let strip = width * STRIP_ROWS;
-    frame
-        .ids
-        .par_chunks_mut(strip)
-        .zip(frame.depth.par_chunks_mut(strip))
-        .enumerate()
-        .for_each(|(s, (ids, depth))| {
-            let y_start = s * STRIP_ROWS;
-            let rows = ids.len() / width;
-            for by in (0..rows).step_by(LANES / BW) {
-                for bx in (0..width).step_by(BW) {
-                    let (d, active) = block_rays::<BW>(tables, bx, y_start + by, width, height);
-                    let mut hit = Hit8::new(active);
-                    p.trace_x8(&d, &mut hit);
-                    let (t, id) = (hit.t.to_array(), hit.id.to_array());
-                    for lane in 0..LANES {
-                        let (x, y) = (bx + lane % BW, by + lane / BW);
-                        if x < width && y < rows {
-                            ids[y * width + x] = id[lane] as i32;
-                            depth[y * width + x] = t[lane];
-                        }
+    for_each_strip(&mut frame, progress, |y_start, ids, depth| {
+        let rows = ids.len() / width;
+        for by in (0..rows).step_by(LANES / BW) {
+            for bx in (0..width).step_by(BW) {
+                let (d, active) = block_rays::<BW>(tables, bx, y_start + by, width, height);
+                let mut hit = Hit8::new(active);
+                p.trace_x8(&d, &mut hit);
+                let (t, id) = (hit.t.to_array(), hit.id.to_array());
+                for lane in 0..LANES {
+                    let (x, y) = (bx + lane % BW, by + lane / BW);
+                    if x < width && y < rows {
+                        ids[y * width + x] = id[lane] as i32;
+                        depth[y * width + x] = t[lane];
                     }
                 }
             }
-        });
+        }
+    });
     frame
 }
 
@@ -138,20 +160,24 @@ pub fn render_scalar<T: Real>(
     width: usize,
     height: usize,
 ) -> Frame<T> {
+    render_scalar_counting(p, tables, width, height, None)
+}
+
+fn render_scalar_counting<T: Real>(
+    p: &Prepared<T>,
+    tables: &RayTables<T>,
+    width: usize,
+    height: usize,
+    progress: Option<&AtomicUsize>,
+) -> Frame<T> {
     let mut frame = Frame::new(width, height, T::INFINITY);
-    let strip = width * STRIP_ROWS;
-    frame
-        .ids
-        .par_chunks_mut(strip)
-        .zip(frame.depth.par_chunks_mut(strip))
-        .enumerate()
-        .for_each(|(s, (ids, depth))| {
-            for (i, (id, t)) in ids.iter_mut().zip(depth.iter_mut()).enumerate() {
-                let hit = trace_x1(p, tables.dir_x1(i % width, s * STRIP_ROWS + i / width));
-                *id = hit.id;
-                *t = hit.t;
-            }
-        });
+    for_each_strip(&mut frame, progress, |y_start, ids, depth| {
+        for (i, (id, t)) in ids.iter_mut().zip(depth.iter_mut()).enumerate() {
+            let hit = trace_x1(p, tables.dir_x1(i % width, y_start + i / width));
+            *id = hit.id;
+            *t = hit.t;
+        }
+    });
     frame
 }
 
@@ -216,11 +242,21 @@ impl Setup {
     /// Renders a `width` x `height` frame (the camera's size). Depth is reported in f32 by every
     /// kernel (the oracle's f64 distances rounded once).
     pub fn render(&self, width: usize, height: usize) -> Frame<f32> {
+        self.render_counting(width, height, None)
+    }
+
+    /// [`Setup::render`], counting finished strips (of [`strip_count`]) in `progress`.
+    pub fn render_counting(
+        &self,
+        width: usize,
+        height: usize,
+        progress: Option<&AtomicUsize>,
+    ) -> Frame<f32> {
         match self {
-            Setup::Packet(p, t) => render_packet(p, t, width, height),
-            Setup::ScalarF32(p, t) => render_scalar(p, t, width, height),
+            Setup::Packet(p, t) => render_packet_blocks::<BLOCK_W>(p, t, width, height, progress),
+            Setup::ScalarF32(p, t) => render_scalar_counting(p, t, width, height, progress),
             Setup::ScalarF64(p, t) => {
-                let f = render_scalar(p, t, width, height);
+                let f = render_scalar_counting(p, t, width, height, progress);
                 Frame {
                     width,
                     height,

@@ -5,11 +5,16 @@ use crate::cli::{KernelArg, RenderSettings, ViewSettings};
 use crate::error::{Error, Result};
 use crate::limits::{BYTES_PER_PIXEL, MAX_PIXELS};
 use crate::output;
-use crate::render::{Kernel, Setup};
+use crate::progress;
+use crate::render::{Kernel, Setup, strip_count};
 use crate::scene::{Scene, load_scene};
 use crate::shade::shade;
-use std::path::{Path, PathBuf};
-use std::time::{Duration, Instant};
+use crate::stats::{Stats, scene_name, secs};
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// The intersection methods the kernels use (triangles and quads, spheres): README "Kernels".
+pub const METHOD: &str = "eplane+stable";
 
 /// Field of view when neither the command line nor the scene gives one.
 pub const DEFAULT_FOV: f64 = 60.0;
@@ -49,6 +54,7 @@ fn check_outputs(s: &RenderSettings) -> Result<()> {
     let mut outs: Vec<(&str, &PathBuf)> = vec![("--output", &s.output)];
     outs.extend(s.ids.as_ref().map(|p| ("--ids", p)));
     outs.extend(s.depth.as_ref().map(|p| ("--depth", p)));
+    outs.extend(s.stats.as_ref().map(|p| ("--stats", p)));
     for (i, (flag, path)) in outs.iter().enumerate() {
         if output::same_file(path, &s.view.input) {
             return Err(Error::usage(format!(
@@ -86,23 +92,42 @@ pub fn render_command(s: &RenderSettings) -> Result<()> {
     output::install_interrupt_cleanup();
     check_outputs(s)?;
     check_memory(s.view.width, s.view.height)?;
-    let mut phases: Vec<(&str, Duration)> = Vec::new();
+    let mut stats = Stats {
+        scene: scene_name(&s.view.input),
+        width: s.view.width as usize,
+        height: s.view.height as usize,
+        kernel: s.kernel.name(),
+        method: METHOD,
+        ..Stats::default()
+    };
     let mut clock = Instant::now();
-    let mut lap = |name, phases: &mut Vec<(&str, Duration)>| {
-        phases.push((name, clock.elapsed()));
-        clock = Instant::now();
+    let lap = |name, stats: &mut Stats, clock: &mut Instant| {
+        stats.phases.push((name, secs(clock.elapsed())));
+        *clock = Instant::now();
     };
 
     let (scene, camera) = load_view(&s.view)?;
-    lap("parse", &mut phases);
+    stats.primitives = scene.counts();
+    lap("parse", &mut stats, &mut clock);
 
     let pool = pool(s.view.threads)?;
     let setup = Setup::with_accel(s.kernel.into(), s.view.accel, &scene, &camera);
-    lap("setup", &mut phases);
+    stats.accel = setup.accel().name();
+    stats.threads = pool.current_num_threads();
+    lap("setup", &mut stats, &mut clock);
 
     let (w, h) = (s.view.width as usize, s.view.height as usize);
-    let frame = pool.install(|| setup.render(w, h));
-    lap("render", &mut phases);
+    let mut frame = None;
+    for _ in 0..s.repeat {
+        let start = Instant::now();
+        frame = Some(progress::with_progress(strip_count(h), |done| {
+            pool.install(|| setup.render_counting(w, h, Some(done)))
+        }));
+        stats.renders.push(secs(start.elapsed()));
+    }
+    let frame = frame.expect("--repeat is at least 1");
+    stats.phases.push(("render", stats.render_best()));
+    clock = Instant::now();
 
     let rgb = pool.install(|| {
         shade(
@@ -114,7 +139,7 @@ pub fn render_command(s: &RenderSettings) -> Result<()> {
             s.seed,
         )
     });
-    lap("shade", &mut phases);
+    lap("shade", &mut stats, &mut clock);
 
     output::write_image(&s.output, s.view.width, s.view.height, &rgb)?;
     if let Some(p) = &s.ids {
@@ -123,43 +148,13 @@ pub fn render_command(s: &RenderSettings) -> Result<()> {
     if let Some(p) = &s.depth {
         output::write_npy_f32(p, w, h, &frame.depth)?;
     }
-    lap("write", &mut phases);
+    lap("write", &mut stats, &mut clock);
 
     if s.time {
-        eprint!(
-            "{}",
-            time_report(
-                &s.view.input,
-                w * h,
-                pool.current_num_threads(),
-                setup.accel().name(),
-                &phases
-            )
-        );
+        eprint!("{}", stats.text());
+    }
+    if let Some(p) = &s.stats {
+        output::write_atomic(p, stats.json().as_bytes())?;
     }
     Ok(())
-}
-
-/// The `-time` report: one line per phase, then the primary ray rate of the render phase.
-fn time_report(
-    input: &Path,
-    pixels: usize,
-    threads: usize,
-    accel: &str,
-    phases: &[(&str, Duration)],
-) -> String {
-    let mut out = format!(
-        "lanecast: {} ({pixels} primary rays, {threads} threads, accel {accel})\n",
-        input.display()
-    );
-    for (name, d) in phases {
-        out += &format!("  {name:<7} {:>10.3} ms\n", d.as_secs_f64() * 1e3);
-    }
-    let total: Duration = phases.iter().map(|p| p.1).sum();
-    out += &format!("  {:<7} {:>10.3} ms\n", "total", total.as_secs_f64() * 1e3);
-    if let Some((_, render)) = phases.iter().find(|p| p.0 == "render") {
-        let rate = pixels as f64 / render.as_secs_f64().max(1e-9);
-        out += &format!("  {:.2} Mrays/s (render phase)\n", rate / 1e6);
-    }
-    out
 }

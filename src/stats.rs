@@ -1,0 +1,226 @@
+//! The record of one render: what ran, on what, and how long each phase took. `-time` prints
+//! it for people (stderr), `--stats FILE.json` writes it for scripts.
+
+use std::fmt::Write as _;
+use std::path::Path;
+use std::time::Duration;
+
+/// One run's facts. Times in seconds.
+#[derive(Debug, Clone, Default)]
+pub struct Stats {
+    pub scene: String,
+    pub width: usize,
+    pub height: usize,
+    /// Primitives by type: spheres, triangles, quads.
+    pub primitives: (usize, usize, usize),
+    pub kernel: &'static str,
+    pub method: &'static str,
+    pub accel: &'static str,
+    pub threads: usize,
+    /// Phases in order: parse, setup, render (best of the repeats), shade, write.
+    pub phases: Vec<(&'static str, f64)>,
+    /// Render phase of every repeat.
+    pub renders: Vec<f64>,
+}
+
+impl Stats {
+    pub fn render_best(&self) -> f64 {
+        self.renders.iter().copied().fold(f64::INFINITY, f64::min)
+    }
+
+    pub fn render_median(&self) -> f64 {
+        let mut r = self.renders.clone();
+        r.sort_by(f64::total_cmp);
+        match r.len() {
+            0 => f64::NAN,
+            n if n % 2 == 1 => r[n / 2],
+            n => (r[n / 2 - 1] + r[n / 2]) / 2.0,
+        }
+    }
+
+    /// Primary rays per second of the best render.
+    pub fn rays_per_s(&self) -> f64 {
+        (self.width * self.height) as f64 / self.render_best().max(1e-12)
+    }
+
+    /// The `-time` report.
+    pub fn text(&self) -> String {
+        let (s, t, q) = self.primitives;
+        let mut out = String::new();
+        let _ = writeln!(
+            out,
+            "lanecast: {} {}x{} ({s} spheres, {t} triangles, {q} quads)",
+            self.scene, self.width, self.height
+        );
+        let _ = writeln!(
+            out,
+            "  kernel {}, method {}, accel {}, {} threads, {}",
+            self.kernel,
+            self.method,
+            self.accel,
+            self.threads,
+            simd_in_use()
+        );
+        for (name, secs) in &self.phases {
+            let _ = writeln!(out, "  {name:<7} {:>10.3} ms", secs * 1e3);
+        }
+        let total: f64 = self.phases.iter().map(|p| p.1).sum();
+        let _ = writeln!(out, "  {:<7} {:>10.3} ms", "total", total * 1e3);
+        if self.renders.len() > 1 {
+            let _ = writeln!(
+                out,
+                "  render over {} repeats: best {:.3} ms, median {:.3} ms",
+                self.renders.len(),
+                self.render_best() * 1e3,
+                self.render_median() * 1e3
+            );
+        }
+        let _ = writeln!(
+            out,
+            "  {:.2} Mrays/s (render phase)",
+            self.rays_per_s() / 1e6
+        );
+        if let Some(kib) = peak_rss_kib() {
+            let _ = writeln!(out, "  peak memory {:.1} MiB", kib as f64 / 1024.0);
+        }
+        out
+    }
+
+    /// The `--stats` record, as JSON.
+    pub fn json(&self) -> String {
+        let (s, t, q) = self.primitives;
+        let phases: Vec<String> = self
+            .phases
+            .iter()
+            .map(|(n, v)| format!("\"{n}\": {}", num(*v)))
+            .collect();
+        let renders: Vec<String> = self.renders.iter().map(|v| num(*v)).collect();
+        let mut out = String::from("{\n");
+        let _ = writeln!(out, "  \"scene\": {},", json_str(&self.scene));
+        let _ = writeln!(
+            out,
+            "  \"width\": {}, \"height\": {},",
+            self.width, self.height
+        );
+        let _ = writeln!(
+            out,
+            "  \"primitives\": {{\"spheres\": {s}, \"triangles\": {t}, \"quads\": {q}}},"
+        );
+        let _ = writeln!(
+            out,
+            "  \"kernel\": \"{}\", \"method\": \"{}\", \"accel\": \"{}\", \"threads\": {},",
+            self.kernel, self.method, self.accel, self.threads
+        );
+        let _ = writeln!(out, "  \"simd\": {},", json_str(simd_in_use()));
+        let _ = writeln!(out, "  \"phases_s\": {{{}}},", phases.join(", "));
+        let _ = writeln!(out, "  \"renders_s\": [{}],", renders.join(", "));
+        let _ = writeln!(out, "  \"render_best_s\": {},", num(self.render_best()));
+        let _ = writeln!(out, "  \"render_median_s\": {},", num(self.render_median()));
+        let _ = writeln!(out, "  \"rays_per_s\": {},", num(self.rays_per_s()));
+        let peak = peak_rss_kib().map_or("null".to_string(), |k| (k * 1024).to_string());
+        let _ = writeln!(out, "  \"peak_rss_bytes\": {peak}");
+        out.push_str("}\n");
+        out
+    }
+}
+
+/// JSON number; non-finite values become null.
+fn num(v: f64) -> String {
+    if v.is_finite() {
+        format!("{v:e}")
+    } else {
+        "null".into()
+    }
+}
+
+/// JSON string literal.
+fn json_str(s: &str) -> String {
+    let mut out = String::from("\"");
+    for c in s.chars() {
+        match c {
+            '"' => out.push_str("\\\""),
+            '\\' => out.push_str("\\\\"),
+            c if (c as u32) < 0x20 => {
+                let _ = write!(out, "\\u{:04x}", c as u32);
+            }
+            c => out.push(c),
+        }
+    }
+    out.push('"');
+    out
+}
+
+/// What the packet kernel's `f32x8` compiles to in this build (fixed at compile time).
+pub fn simd_in_use() -> &'static str {
+    if cfg!(all(target_feature = "avx2", target_feature = "fma")) {
+        "f32x8 as one AVX2 register (FMA available, unused by the kernels)"
+    } else if cfg!(target_feature = "avx") {
+        "f32x8 as one AVX register"
+    } else {
+        "f32x8 as two SSE halves (portable build)"
+    }
+}
+
+/// Peak resident memory of this process (VmHWM), in KiB, where the OS tells it.
+pub fn peak_rss_kib() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    line.split_whitespace().nth(1)?.parse().ok()
+}
+
+/// Seconds of a duration.
+pub fn secs(d: Duration) -> f64 {
+    d.as_secs_f64()
+}
+
+/// The scene path as recorded.
+pub fn scene_name(p: &Path) -> String {
+    p.display().to_string()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn stats() -> Stats {
+        Stats {
+            scene: "a \"q\".sc".into(),
+            width: 10,
+            height: 10,
+            primitives: (1, 2, 3),
+            kernel: "simd",
+            method: "eplane+stable",
+            accel: "bvh",
+            threads: 2,
+            phases: vec![("parse", 0.001), ("render", 0.002)],
+            renders: vec![0.004, 0.002, 0.003, 0.010],
+        }
+    }
+
+    #[test]
+    fn best_median_and_rate() {
+        let s = stats();
+        assert_eq!(s.render_best(), 0.002);
+        assert_eq!(s.render_median(), 0.0035);
+        assert!((s.rays_per_s() - 50_000.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn json_escapes_and_lists_every_field() {
+        let j = stats().json();
+        assert!(j.contains(r#""scene": "a \"q\".sc""#), "{j}");
+        for key in [
+            "primitives",
+            "kernel",
+            "method",
+            "accel",
+            "threads",
+            "simd",
+            "phases_s",
+        ] {
+            assert!(j.contains(&format!("\"{key}\"")), "{key}");
+        }
+        assert!(j.contains("\"render_best_s\": 2e-3"), "{j}");
+        assert_eq!(j.matches('{').count(), j.matches('}').count());
+    }
+}
