@@ -15,6 +15,7 @@ pub mod packet;
 pub mod polygon;
 pub mod scalar;
 pub mod sphere;
+pub mod methods;
 
 use crate::real::Real;
 use wide::f32x8;

@@ -1,0 +1,63 @@
+//! The classic f32 setup, kept as a measured counter-example: every coordinate of the scene and
+//! the eye is first rounded to f32, and every per-primitive constant of the default methods
+//! (edge planes, stable sphere) is then computed in f32 from those rounded world coordinates
+//! (`V - eye` included, as a world-space kernel does per ray with the ray origin `eye` in f32).
+//! The default stores the same constants computed in f64 relative to the eye, then rounded.
+//!
+//! Precision: `V - eye` loses ulp(|V|, |eye|) absolutely: 2^-7 = 0.0078 for coordinates near
+//! 1e5, so a scene translated by (1e5, 1e5, 1e5) shifts its primitives by up to ~0.01 and
+//! shared edges no longer share their rounded planes exactly... the cross products and the
+//! sphere's `|oc|^2 - r^2` add their own f32 cancellation (a radius-1e4 ground 1.5 below the
+//! eye: `|oc|^2 - r^2 = 3e4` from two ~1e8 terms with ulp 8). Known to fail:
+//! `scenes/stress/translated.sc`, `ground.sc`. Measured by the lab (`world-f32` rows).
+
+use super::{cross, sub};
+use crate::kernel::polygon::PolyK;
+use crate::kernel::sphere::SphereK;
+use crate::real::{V3, dot, v3};
+use glam::DVec3;
+
+/// Sphere constants computed in f32 from f32 world coordinates.
+pub fn sphere(center: DVec3, radius: f64, eye: DVec3) -> SphereK<f32> {
+    let oc = sub(v3::<f32>(center), v3::<f32>(eye));
+    let r = radius as f32;
+    let r2 = r * r;
+    let c = dot(oc, oc) - r2;
+    SphereK {
+        oc,
+        r2,
+        c,
+        inside: c <= 0.0,
+    }
+}
+
+/// Edge-plane constants computed in f32 from f32 world coordinates (`raw_normal` from the
+/// rounded vertices too), the steps of `PolyK::new`. `None` when edge-on or not finite.
+pub fn polygon<const N: usize>(v: &[DVec3; N], eye: DVec3) -> Option<PolyK<f32, N>> {
+    let w: [V3<f32>; N] = v.map(v3::<f32>);
+    let raw = if N == 3 {
+        cross(sub(w[1], w[0]), sub(w[2], w[0]))
+    } else {
+        cross(sub(w[2], w[0]), sub(w[3], w[1]))
+    };
+    let e = v3::<f32>(eye);
+    let rel: [V3<f32>; N] = w.map(|p| sub(p, e));
+    let facing = dot(rel[0], raw);
+    if facing == 0.0 || !facing.is_finite() {
+        return None;
+    }
+    let s = facing.signum();
+    let unit = |a: V3<f32>| {
+        let len = dot(a, a).sqrt();
+        if len > 0.0 {
+            a.map(|c| c / len)
+        } else {
+            [0.0; 3]
+        }
+    };
+    let nrm = unit(raw).map(|c| c * s);
+    let p = rel.iter().map(|r| dot(*r, nrm)).sum::<f32>() / N as f32;
+    let n = std::array::from_fn(|i| unit(cross(rel[i], rel[(i + 1) % N])).map(|c| c * s));
+    let finite = p.is_finite() && nrm.iter().all(|c| c.is_finite());
+    (p > 0.0 && finite).then_some(PolyK { n, nrm, p })
+}

@@ -1,0 +1,610 @@
+//! The lab's brute-force drivers: every ray against every primitive, one thread, one method.
+//! Independent of `render.rs`/`packet.rs`/`scalar.rs` (which may grow acceleration
+//! structures), so the lab measures the intersection methods alone.
+//!
+//! A [`Kit`] holds one method's constants for one scene (spheres, triangles, quads, each with
+//! its id) and the camera's ray tables; [`Kit::render_x8`] traces 4x2 pixel blocks as 8-lane
+//! packets (lanes past the image border masked, as in the main renderer) and
+//! [`Kit::render_x1`] one ray at a time in f32 with the same method. [`Kit64`] is the f64x4
+//! packet form of the default methods, [`Oracle`] the f64 scalar oracle.
+
+use crate::camera::{Camera, RayTables};
+use crate::kernel::methods::mt::{MtK, mt_x1, mt_x8};
+use crate::kernel::methods::plane::{PlaneK, plane_x1, plane_x8};
+use crate::kernel::methods::sphere_naive::{NaiveK, naive_x1, naive_x8};
+use crate::kernel::methods::wide64::{Hit4d, dir_x4d, polygon_x4d, sphere_x4d};
+use crate::kernel::methods::woop::{WoopK, WoopRay, WoopRay8, woop_ray, woop_x1, woop_x8};
+use crate::kernel::methods::{quad_split, world};
+use crate::kernel::polygon::{PolyK, QuadK, TriangleK, polygon_x1, polygon_x8};
+use crate::kernel::sphere::{SphereK, sphere_x1, sphere_x8};
+use crate::kernel::{Hit, Hit8, LANES};
+use crate::real::V3;
+use crate::scene::{Scene, Shape};
+use glam::DVec3;
+use std::marker::PhantomData;
+use wide::{f32x8, f64x4};
+
+/// Pixel block of one packet, as in the main renderer: 4 wide, 2 high.
+pub const BW: usize = 4;
+pub const BH: usize = LANES / BW;
+
+/// Per-pixel results, row 0 at the top: id (-1 background) and distance (+inf background).
+#[derive(Debug, Clone, PartialEq)]
+pub struct LabFrame {
+    pub width: usize,
+    pub height: usize,
+    pub ids: Vec<i32>,
+    pub depth: Vec<f64>,
+}
+
+impl LabFrame {
+    fn new(width: usize, height: usize) -> LabFrame {
+        LabFrame {
+            width,
+            height,
+            ids: vec![-1; width * height],
+            depth: vec![f64::INFINITY; width * height],
+        }
+    }
+}
+
+/// A sphere method: constants and its 1- and 8-lane forms.
+pub trait SphereFamily {
+    type K: Copy + Send + Sync;
+    fn make(center: DVec3, radius: f64, eye: DVec3) -> Self::K;
+    fn x1(k: &Self::K, d: V3<f32>) -> Option<f32>;
+    fn x8(k: &Self::K, d: &[f32x8; 3]) -> Option<(f32x8, f32x8)>;
+}
+
+/// A triangle/quad method: constants (`None`: the primitive covers no pixel), the per-ray and
+/// per-packet data it shares over primitives, and its 1- and 8-lane forms.
+pub trait PolyFamily {
+    type T: Copy + Send + Sync;
+    type Q: Copy + Send + Sync;
+    type R1;
+    type R8;
+    fn tri(v: &[DVec3; 3], eye: DVec3) -> Option<Self::T>;
+    fn quad(v: &[DVec3; 4], eye: DVec3) -> Option<Self::Q>;
+    fn ray1(d: V3<f32>) -> Self::R1;
+    fn ray8(d: &[f32x8; 3]) -> Self::R8;
+    fn tri_x1(k: &Self::T, r: &Self::R1) -> Option<f32>;
+    fn tri_x8(k: &Self::T, r: &Self::R8) -> Option<(f32x8, f32x8)>;
+    fn quad_x1(k: &Self::Q, r: &Self::R1) -> Option<f32>;
+    fn quad_x8(k: &Self::Q, r: &Self::R8) -> Option<(f32x8, f32x8)>;
+}
+
+/// The nearer of two optional positive distances (the quad of two triangles).
+#[inline(always)]
+fn nearer(a: Option<f32>, b: Option<f32>) -> Option<f32> {
+    match (a, b) {
+        (Some(a), Some(b)) => Some(if b < a { b } else { a }),
+        (a, None) => a,
+        (None, b) => b,
+    }
+}
+
+/// [`nearer`] lane by lane.
+#[inline(always)]
+fn nearer8(a: Option<(f32x8, f32x8)>, b: Option<(f32x8, f32x8)>) -> Option<(f32x8, f32x8)> {
+    let zero = f32x8::ZERO;
+    let inf = f32x8::splat(f32::INFINITY);
+    let keep = |(m, t): (f32x8, f32x8)| m & t.simd_gt(zero) & t.simd_lt(inf);
+    match (a, b) {
+        (Some(a), Some(b)) => {
+            let (ma, mb) = (keep(a), keep(b));
+            let take_b = mb & (!ma | b.1.simd_lt(a.1));
+            Some((ma | mb, take_b.select(b.1, a.1)))
+        }
+        (a, None) => a,
+        (None, b) => b,
+    }
+}
+
+/// The stable sphere (`kernel::sphere`), eye-relative f64 setup.
+pub struct Stable;
+impl SphereFamily for Stable {
+    type K = SphereK<f32>;
+    fn make(c: DVec3, r: f64, eye: DVec3) -> Self::K {
+        SphereK::new(c, r, eye).cast()
+    }
+    fn x1(k: &Self::K, d: V3<f32>) -> Option<f32> {
+        sphere_x1(k, d)
+    }
+    #[inline(always)]
+    fn x8(k: &Self::K, d: &[f32x8; 3]) -> Option<(f32x8, f32x8)> {
+        sphere_x8(k, d)
+    }
+}
+
+/// The stable sphere with f32 world-space setup (`methods::world`).
+pub struct StableWorld;
+impl SphereFamily for StableWorld {
+    type K = SphereK<f32>;
+    fn make(c: DVec3, r: f64, eye: DVec3) -> Self::K {
+        world::sphere(c, r, eye)
+    }
+    fn x1(k: &Self::K, d: V3<f32>) -> Option<f32> {
+        sphere_x1(k, d)
+    }
+    #[inline(always)]
+    fn x8(k: &Self::K, d: &[f32x8; 3]) -> Option<(f32x8, f32x8)> {
+        sphere_x8(k, d)
+    }
+}
+
+/// The textbook sphere (`methods::sphere_naive`).
+pub struct Naive;
+impl SphereFamily for Naive {
+    type K = NaiveK<f32>;
+    fn make(c: DVec3, r: f64, eye: DVec3) -> Self::K {
+        NaiveK::new(c, r, eye).cast()
+    }
+    fn x1(k: &Self::K, d: V3<f32>) -> Option<f32> {
+        naive_x1(k, d)
+    }
+    #[inline(always)]
+    fn x8(k: &Self::K, d: &[f32x8; 3]) -> Option<(f32x8, f32x8)> {
+        naive_x8(k, d)
+    }
+}
+
+/// The default edge-plane polygons (`kernel::polygon`): a quad is one four-edge polygon.
+pub struct EPlane;
+impl PolyFamily for EPlane {
+    type T = TriangleK<f32>;
+    type Q = QuadK<f32>;
+    type R1 = V3<f32>;
+    type R8 = [f32x8; 3];
+    fn tri(v: &[DVec3; 3], eye: DVec3) -> Option<Self::T> {
+        Some(TriangleK::triangle(v, eye)?.cast())
+    }
+    fn quad(v: &[DVec3; 4], eye: DVec3) -> Option<Self::Q> {
+        Some(QuadK::quad(v, eye)?.cast())
+    }
+    fn ray1(d: V3<f32>) -> Self::R1 {
+        d
+    }
+    fn ray8(d: &[f32x8; 3]) -> Self::R8 {
+        *d
+    }
+    fn tri_x1(k: &Self::T, d: &Self::R1) -> Option<f32> {
+        polygon_x1(k, *d)
+    }
+    #[inline(always)]
+    fn tri_x8(k: &Self::T, d: &Self::R8) -> Option<(f32x8, f32x8)> {
+        polygon_x8(k, d)
+    }
+    fn quad_x1(k: &Self::Q, d: &Self::R1) -> Option<f32> {
+        polygon_x1(k, *d)
+    }
+    #[inline(always)]
+    fn quad_x8(k: &Self::Q, d: &Self::R8) -> Option<(f32x8, f32x8)> {
+        polygon_x8(k, d)
+    }
+}
+
+/// Edge planes with f32 world-space setup (`methods::world`).
+pub struct EPlaneWorld;
+impl PolyFamily for EPlaneWorld {
+    type T = TriangleK<f32>;
+    type Q = QuadK<f32>;
+    type R1 = V3<f32>;
+    type R8 = [f32x8; 3];
+    fn tri(v: &[DVec3; 3], eye: DVec3) -> Option<Self::T> {
+        world::polygon(v, eye)
+    }
+    fn quad(v: &[DVec3; 4], eye: DVec3) -> Option<Self::Q> {
+        world::polygon(v, eye)
+    }
+    fn ray1(d: V3<f32>) -> Self::R1 {
+        d
+    }
+    fn ray8(d: &[f32x8; 3]) -> Self::R8 {
+        *d
+    }
+    fn tri_x1(k: &Self::T, d: &Self::R1) -> Option<f32> {
+        polygon_x1(k, *d)
+    }
+    #[inline(always)]
+    fn tri_x8(k: &Self::T, d: &Self::R8) -> Option<(f32x8, f32x8)> {
+        polygon_x8(k, d)
+    }
+    fn quad_x1(k: &Self::Q, d: &Self::R1) -> Option<f32> {
+        polygon_x1(k, *d)
+    }
+    #[inline(always)]
+    fn quad_x8(k: &Self::Q, d: &Self::R8) -> Option<(f32x8, f32x8)> {
+        polygon_x8(k, d)
+    }
+}
+
+/// Implements [`PolyFamily`] for a triangle-only method whose quads are two triangles.
+macro_rules! two_triangle_family {
+    ($fam:ident, $k:ident, $r1:ty, $r8:ty, $ray1:expr, $ray8:expr, $x1:ident, $x8:ident) => {
+        impl PolyFamily for $fam {
+            type T = $k<f32>;
+            type Q = [$k<f32>; 2];
+            type R1 = $r1;
+            type R8 = $r8;
+            fn tri(v: &[DVec3; 3], eye: DVec3) -> Option<Self::T> {
+                Some($k::new(v, eye).cast())
+            }
+            fn quad(v: &[DVec3; 4], eye: DVec3) -> Option<Self::Q> {
+                Some(quad_split(v).map(|t| $k::new(&t, eye).cast()))
+            }
+            fn ray1(d: V3<f32>) -> Self::R1 {
+                $ray1(d)
+            }
+            fn ray8(d: &[f32x8; 3]) -> Self::R8 {
+                $ray8(d)
+            }
+            fn tri_x1(k: &Self::T, r: &Self::R1) -> Option<f32> {
+                $x1(k, r)
+            }
+            #[inline(always)]
+            fn tri_x8(k: &Self::T, r: &Self::R8) -> Option<(f32x8, f32x8)> {
+                $x8(k, r)
+            }
+            fn quad_x1(k: &Self::Q, r: &Self::R1) -> Option<f32> {
+                nearer($x1(&k[0], r), $x1(&k[1], r))
+            }
+            #[inline(always)]
+            fn quad_x8(k: &Self::Q, r: &Self::R8) -> Option<(f32x8, f32x8)> {
+                nearer8($x8(&k[0], r), $x8(&k[1], r))
+            }
+        }
+    };
+}
+
+/// Möller–Trumbore (`methods::mt`).
+pub struct Mt;
+fn mt1(k: &MtK<f32>, d: &V3<f32>) -> Option<f32> {
+    mt_x1(k, *d)
+}
+two_triangle_family!(
+    Mt,
+    MtK,
+    V3<f32>,
+    [f32x8; 3],
+    |d| d,
+    |d: &[f32x8; 3]| *d,
+    mt1,
+    mt_x8
+);
+
+/// Woop–Benthin–Wald watertight (`methods::woop`).
+pub struct Watertight;
+two_triangle_family!(
+    Watertight,
+    WoopK,
+    WoopRay<f32>,
+    WoopRay8,
+    woop_ray,
+    WoopRay8::new,
+    woop_x1,
+    woop_x8
+);
+
+/// The original assignment's plane + determinants (`methods::plane`).
+pub struct Plane;
+fn plane1(k: &PlaneK<f32>, d: &V3<f32>) -> Option<f32> {
+    plane_x1(k, *d)
+}
+two_triangle_family!(
+    Plane,
+    PlaneK,
+    V3<f32>,
+    [f32x8; 3],
+    |d| d,
+    |d: &[f32x8; 3]| *d,
+    plane1,
+    plane_x8
+);
+
+/// One method's constants for one scene, with the camera's f32 ray tables.
+pub struct Kit<S: SphereFamily, P: PolyFamily> {
+    pub spheres: Vec<(S::K, f32)>,
+    pub triangles: Vec<(P::T, f32)>,
+    pub quads: Vec<(P::Q, f32)>,
+    pub tables: RayTables<f32>,
+    pub width: usize,
+    pub height: usize,
+    _m: PhantomData<(S, P)>,
+}
+
+impl<S: SphereFamily, P: PolyFamily> Kit<S, P> {
+    pub fn new(scene: &Scene, camera: &Camera) -> Self {
+        let eye = camera.eye;
+        let mut kit = Kit {
+            spheres: Vec::new(),
+            triangles: Vec::new(),
+            quads: Vec::new(),
+            tables: camera.tables(BW as u32, BH as u32),
+            width: camera.width as usize,
+            height: camera.height as usize,
+            _m: PhantomData,
+        };
+        for (id, shape) in scene.shapes.iter().enumerate() {
+            let id = id as f32;
+            match shape {
+                Shape::Sphere { center, radius } => {
+                    kit.spheres.push((S::make(*center, *radius, eye), id))
+                }
+                Shape::Triangle(v) => {
+                    if let Some(k) = P::tri(v, eye) {
+                        kit.triangles.push((k, id))
+                    }
+                }
+                Shape::Quad(v) => {
+                    if let Some(k) = P::quad(v, eye) {
+                        kit.quads.push((k, id))
+                    }
+                }
+            }
+        }
+        kit
+    }
+
+    /// Nearest hits of eight rays, folded into `hit`.
+    #[inline]
+    pub fn trace_x8(&self, d: &[f32x8; 3], hit: &mut Hit8) {
+        for (k, id) in &self.spheres {
+            if let Some((m, t)) = S::x8(k, d) {
+                hit.update(m, t, *id);
+            }
+        }
+        if self.triangles.is_empty() && self.quads.is_empty() {
+            return;
+        }
+        let r = P::ray8(d);
+        for (k, id) in &self.triangles {
+            if let Some((m, t)) = P::tri_x8(k, &r) {
+                hit.update(m, t, *id);
+            }
+        }
+        for (k, id) in &self.quads {
+            if let Some((m, t)) = P::quad_x8(k, &r) {
+                hit.update(m, t, *id);
+            }
+        }
+    }
+
+    /// Nearest hit of one ray.
+    pub fn trace_x1(&self, d: V3<f32>) -> Hit<f32> {
+        let mut hit = Hit::NONE;
+        for (k, id) in &self.spheres {
+            if let Some(t) = S::x1(k, d) {
+                hit.update(t, *id as i32);
+            }
+        }
+        let r = P::ray1(d);
+        for (k, id) in &self.triangles {
+            if let Some(t) = P::tri_x1(k, &r) {
+                hit.update(t, *id as i32);
+            }
+        }
+        for (k, id) in &self.quads {
+            if let Some(t) = P::quad_x1(k, &r) {
+                hit.update(t, *id as i32);
+            }
+        }
+        hit
+    }
+
+    /// The image in 4x2 packets, on the calling thread.
+    pub fn render_x8(&self) -> LabFrame {
+        let (w, h) = (self.width, self.height);
+        let mut f = LabFrame::new(w, h);
+        for by in (0..h).step_by(BH) {
+            for bx in (0..w).step_by(BW) {
+                let (d, active) = block_rays(&self.tables, bx, by, w, h);
+                let mut hit = Hit8::new(active);
+                self.trace_x8(&d, &mut hit);
+                let (t, id) = (hit.t.to_array(), hit.id.to_array());
+                for lane in 0..LANES {
+                    let (x, y) = (bx + lane % BW, by + lane / BW);
+                    if x < w && y < h {
+                        f.ids[y * w + x] = id[lane] as i32;
+                        f.depth[y * w + x] = t[lane] as f64;
+                    }
+                }
+            }
+        }
+        f
+    }
+
+    /// The image one ray at a time (f32, same method).
+    pub fn render_x1(&self) -> LabFrame {
+        let (w, h) = (self.width, self.height);
+        let mut f = LabFrame::new(w, h);
+        for y in 0..h {
+            for x in 0..w {
+                let hit = self.trace_x1(self.tables.dir_x1(x, y));
+                f.ids[y * w + x] = hit.id;
+                f.depth[y * w + x] = hit.t as f64;
+            }
+        }
+        f
+    }
+}
+
+/// Rays of the 4x2 block at (x0, y0) and the mask of lanes inside the image (tables padded).
+#[inline(always)]
+pub fn block_rays(
+    tables: &RayTables<f32>,
+    x0: usize,
+    y0: usize,
+    width: usize,
+    height: usize,
+) -> ([f32x8; 3], f32x8) {
+    let sx = f32x8::new(std::array::from_fn(|i| tables.sx[x0 + i % BW]));
+    let sy = f32x8::new(std::array::from_fn(|i| tables.sy[y0 + i / BW]));
+    let inside = |i: usize| x0 + i % BW < width && y0 + i / BW < height;
+    let active =
+        f32x8::new(std::array::from_fn(|i| if inside(i) { 1.0 } else { 0.0 })).simd_gt(f32x8::ZERO);
+    (tables.dir_x8(sx, sy), active)
+}
+
+/// The default methods in f64x4 lanes (`methods::wide64`): a 4x2 block is two f64x4 rows, both
+/// tested against each primitive before the next.
+pub struct Kit64 {
+    pub spheres: Vec<(SphereK<f64>, f64)>,
+    pub triangles: Vec<(TriangleK<f64>, f64)>,
+    pub quads: Vec<(QuadK<f64>, f64)>,
+    pub tables: RayTables<f64>,
+    pub width: usize,
+    pub height: usize,
+}
+
+impl Kit64 {
+    pub fn new(scene: &Scene, camera: &Camera) -> Kit64 {
+        let o = Oracle::new(scene, camera);
+        Kit64 {
+            spheres: o.spheres,
+            triangles: o.triangles,
+            quads: o.quads,
+            tables: camera.tables(BW as u32, BH as u32),
+            width: o.width,
+            height: o.height,
+        }
+    }
+
+    #[inline(always)]
+    fn poly2<const N: usize>(
+        g: &[(PolyK<f64, N>, f64)],
+        d: &[[f64x4; 3]; 2],
+        hit: &mut [Hit4d; 2],
+    ) {
+        for (k, id) in g {
+            for h in 0..2 {
+                if let Some((m, t)) = polygon_x4d(k, &d[h]) {
+                    hit[h].update(m, t, *id);
+                }
+            }
+        }
+    }
+
+    /// Nearest hits of two rows of four rays.
+    #[inline]
+    pub fn trace_x4d2(&self, d: &[[f64x4; 3]; 2], hit: &mut [Hit4d; 2]) {
+        for (k, id) in &self.spheres {
+            for h in 0..2 {
+                if let Some((m, t)) = sphere_x4d(k, &d[h]) {
+                    hit[h].update(m, t, *id);
+                }
+            }
+        }
+        Self::poly2(&self.triangles, d, hit);
+        Self::poly2(&self.quads, d, hit);
+    }
+
+    pub fn render(&self) -> LabFrame {
+        let (w, h) = (self.width, self.height);
+        let mut f = LabFrame::new(w, h);
+        let t = &self.tables;
+        for by in (0..h).step_by(BH) {
+            for bx in (0..w).step_by(BW) {
+                let sx = f64x4::new(std::array::from_fn(|i| t.sx[bx + i]));
+                let row = |r: usize| {
+                    let d = dir_x4d(t, sx, f64x4::splat(t.sy[by + r]));
+                    let inside = |i: usize| bx + i < w && by + r < h;
+                    let active =
+                        f64x4::new(std::array::from_fn(|i| if inside(i) { 1.0 } else { 0.0 }))
+                            .simd_gt(f64x4::ZERO);
+                    (d, Hit4d::new(active))
+                };
+                let ((d0, h0), (d1, h1)) = (row(0), row(1));
+                let mut hit = [h0, h1];
+                self.trace_x4d2(&[d0, d1], &mut hit);
+                for (r, hr) in hit.iter().enumerate() {
+                    let (tt, id) = (hr.t.to_array(), hr.id.to_array());
+                    for i in 0..4 {
+                        let (x, y) = (bx + i, by + r);
+                        if x < w && y < h {
+                            f.ids[y * w + x] = id[i] as i32;
+                            f.depth[y * w + x] = tt[i];
+                        }
+                    }
+                }
+            }
+        }
+        f
+    }
+}
+
+/// The f64 scalar oracle: the default methods' f64 constants, one ray at a time (the same
+/// computation as `kernel::scalar::trace_x1` on `soa::Prepared<f64>`).
+pub struct Oracle {
+    pub spheres: Vec<(SphereK<f64>, f64)>,
+    pub triangles: Vec<(TriangleK<f64>, f64)>,
+    pub quads: Vec<(QuadK<f64>, f64)>,
+    pub tables: RayTables<f64>,
+    pub width: usize,
+    pub height: usize,
+}
+
+impl Oracle {
+    pub fn new(scene: &Scene, camera: &Camera) -> Oracle {
+        let eye = camera.eye;
+        let mut o = Oracle {
+            spheres: Vec::new(),
+            triangles: Vec::new(),
+            quads: Vec::new(),
+            tables: camera.tables(1, 1),
+            width: camera.width as usize,
+            height: camera.height as usize,
+        };
+        for (id, shape) in scene.shapes.iter().enumerate() {
+            let id = id as f64;
+            match shape {
+                Shape::Sphere { center, radius } => {
+                    o.spheres.push((SphereK::new(*center, *radius, eye), id))
+                }
+                Shape::Triangle(v) => {
+                    if let Some(k) = TriangleK::triangle(v, eye) {
+                        o.triangles.push((k, id))
+                    }
+                }
+                Shape::Quad(v) => {
+                    if let Some(k) = QuadK::quad(v, eye) {
+                        o.quads.push((k, id))
+                    }
+                }
+            }
+        }
+        o
+    }
+
+    pub fn trace(&self, d: V3<f64>) -> Hit<f64> {
+        let mut hit = Hit::NONE;
+        for (k, id) in &self.spheres {
+            if let Some(t) = sphere_x1(k, d) {
+                hit.update(t, *id as i32);
+            }
+        }
+        for (k, id) in &self.triangles {
+            if let Some(t) = polygon_x1(k, d) {
+                hit.update(t, *id as i32);
+            }
+        }
+        for (k, id) in &self.quads {
+            if let Some(t) = polygon_x1(k, d) {
+                hit.update(t, *id as i32);
+            }
+        }
+        hit
+    }
+
+    pub fn render(&self) -> LabFrame {
+        let (w, h) = (self.width, self.height);
+        let mut f = LabFrame::new(w, h);
+        for y in 0..h {
+            for x in 0..w {
+                let hit = self.trace(self.tables.dir_x1(x, y));
+                f.ids[y * w + x] = hit.id;
+                f.depth[y * w + x] = hit.t;
+            }
+        }
+        f
+    }
+}

@@ -1,0 +1,290 @@
+//! The accuracy lab: every intersection method (`kernel::methods`, plus the defaults) on the
+//! stress scenes (`scenes/stress/`) and the seed scenes, measured against the f64 scalar
+//! oracle, with throughput on one thread; writes a chart, a table and error images to
+//! `docs/lab/`. Run it with `cargo bench --bench lab` (see [`lab_main`]).
+//!
+//! - `kits.rs`: brute-force drivers per method (8-lane packets, 1-lane f32, f64x4, oracle);
+//! - `measure.rs`: mismatches (ties, edge band, unexcused), holes, false hits, depth error,
+//!   throughput;
+//! - `report.rs`: the Markdown table, the chart (plotters), the error images.
+
+pub mod kits;
+pub mod measure;
+pub mod report;
+
+use crate::camera::Camera;
+use crate::error::{Error, Result};
+use crate::scene::{Scene, load_scene};
+use kits::{
+    EPlane, EPlaneWorld, Kit, Kit64, LabFrame, Mt, Naive, Oracle, Plane, Stable, StableWorld,
+    Watertight,
+};
+use std::path::{Path, PathBuf};
+
+/// Size of the stress scenes unless their `# lab:` line says otherwise; also the seed scenes'.
+pub const DEFAULT_SIZE: (u32, u32) = (320, 240);
+
+/// One method as a point on the chart: a triangle/quad method, a sphere method, a precision.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Method {
+    /// The default: edge planes + stable sphere, f32, eye-relative f64 setup.
+    Default,
+    /// Möller–Trumbore triangles (+ stable spheres).
+    Mt,
+    /// Woop–Benthin–Wald watertight triangles (+ stable spheres).
+    Watertight,
+    /// The original assignment's plane + determinants (+ stable spheres).
+    Plane,
+    /// Textbook sphere quadratic (+ edge-plane polygons).
+    Naive,
+    /// The default methods with the classic f32 world-space setup.
+    WorldF32,
+    /// The default methods in f64x4 packets.
+    F64x4,
+}
+
+impl Method {
+    pub const ALL: [Method; 7] = [
+        Method::Default,
+        Method::Mt,
+        Method::Watertight,
+        Method::Plane,
+        Method::Naive,
+        Method::WorldF32,
+        Method::F64x4,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Default => "eplane+stable",
+            Method::Mt => "mt",
+            Method::Watertight => "watertight",
+            Method::Plane => "plane",
+            Method::Naive => "naive",
+            Method::WorldF32 => "world-f32",
+            Method::F64x4 => "f64x4",
+        }
+    }
+
+    pub fn describe(self) -> &'static str {
+        match self {
+            Method::Default => {
+                "default: edge planes (triangles, quads) + stable sphere, f32x8, eye-relative f64 setup"
+            }
+            Method::Mt => {
+                "Möller–Trumbore triangles, quads as 2 triangles (+ stable spheres), f32x8"
+            }
+            Method::Watertight => {
+                "Woop–Benthin–Wald watertight triangles, quads as 2 triangles (+ stable spheres), f32x8"
+            }
+            Method::Plane => {
+                "plane hit + edge determinants, quads as 2 triangles (+ stable spheres), f32x8"
+            }
+            Method::Naive => "textbook quadratic spheres (+ edge-plane polygons), f32x8",
+            Method::WorldF32 => {
+                "default methods, constants computed in f32 from f32 world coordinates"
+            }
+            Method::F64x4 => "default methods in f64x4 lanes, two per 4x2 packet",
+        }
+    }
+
+    pub fn parse(s: &str) -> Option<Method> {
+        Method::ALL.into_iter().find(|m| m.name() == s)
+    }
+
+    /// Prepares the method for a scene: constants and ray tables (the setup phase).
+    pub fn prepare(self, scene: &Scene, camera: &Camera) -> Box<dyn Render> {
+        match self {
+            Method::Default => Box::new(Kit::<Stable, EPlane>::new(scene, camera)),
+            Method::Mt => Box::new(Kit::<Stable, Mt>::new(scene, camera)),
+            Method::Watertight => Box::new(Kit::<Stable, Watertight>::new(scene, camera)),
+            Method::Plane => Box::new(Kit::<Stable, Plane>::new(scene, camera)),
+            Method::Naive => Box::new(Kit::<Naive, EPlane>::new(scene, camera)),
+            Method::WorldF32 => Box::new(Kit::<StableWorld, EPlaneWorld>::new(scene, camera)),
+            Method::F64x4 => Box::new(Kit64::new(scene, camera)),
+        }
+    }
+}
+
+/// A prepared method: renders the whole image on the calling thread.
+pub trait Render {
+    fn render(&self) -> LabFrame;
+}
+
+impl<S: kits::SphereFamily, P: kits::PolyFamily> Render for Kit<S, P> {
+    fn render(&self) -> LabFrame {
+        self.render_x8()
+    }
+}
+
+impl Render for Kit64 {
+    fn render(&self) -> LabFrame {
+        Kit64::render(self)
+    }
+}
+
+impl Render for Oracle {
+    fn render(&self) -> LabFrame {
+        Oracle::render(self)
+    }
+}
+
+/// A scene as the lab uses it: the parsed scene, its camera at the lab's size, and which
+/// primitives form closed surfaces (where a miss is a hole), from the file's `# lab:` lines:
+/// `# lab: size WxH closed A-B closed C-D` (ids inclusive).
+#[derive(Debug, Clone)]
+pub struct LabScene {
+    pub name: String,
+    pub path: PathBuf,
+    pub scene: Scene,
+    pub camera: Camera,
+    pub closed: Vec<bool>,
+    pub stress: bool,
+}
+
+impl LabScene {
+    pub fn load(path: &Path, stress: bool) -> Result<LabScene> {
+        let scene = load_scene(path)?;
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| Error::Failed(format!("{}: {e}", path.display())))?;
+        let mut size = DEFAULT_SIZE;
+        let mut closed = vec![false; scene.shapes.len()];
+        let bad = |what: &str| Error::Failed(format!("{}: bad '# lab:' {what}", path.display()));
+        for line in text.lines().filter_map(|l| l.trim().strip_prefix("# lab:")) {
+            let mut it = line.split_whitespace();
+            while let Some(key) = it.next() {
+                let val = it.next().ok_or_else(|| bad(key))?;
+                match key {
+                    "size" => {
+                        let (w, h) = val.split_once('x').ok_or_else(|| bad(val))?;
+                        size = (
+                            w.parse().map_err(|_| bad(val))?,
+                            h.parse().map_err(|_| bad(val))?,
+                        );
+                    }
+                    "closed" => {
+                        let (a, b) = val.split_once('-').ok_or_else(|| bad(val))?;
+                        let (a, b): (usize, usize) = (
+                            a.parse().map_err(|_| bad(val))?,
+                            b.parse().map_err(|_| bad(val))?,
+                        );
+                        if b >= closed.len() || a > b {
+                            return Err(bad(val));
+                        }
+                        closed[a..=b].iter_mut().for_each(|c| *c = true);
+                    }
+                    _ => return Err(bad(key)),
+                }
+            }
+        }
+        let fov = scene.camera.fov_deg.unwrap_or(60.0);
+        let camera = Camera::new(&scene.camera, fov, size.0, size.1);
+        let name = path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        Ok(LabScene {
+            name,
+            path: path.to_path_buf(),
+            scene,
+            camera,
+            closed,
+            stress,
+        })
+    }
+}
+
+/// The stress scenes (sorted by name) and then the seed scenes 1..7, from the crate root.
+pub fn load_all(root: &Path) -> Result<Vec<LabScene>> {
+    let mut stress: Vec<PathBuf> = std::fs::read_dir(root.join("scenes/stress"))
+        .map_err(|e| Error::Failed(format!("scenes/stress: {e}")))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "sc"))
+        .collect();
+    stress.sort();
+    let mut out = Vec::new();
+    for p in stress {
+        out.push(LabScene::load(&p, true)?);
+    }
+    for i in 1..=7 {
+        out.push(LabScene::load(
+            &root.join(format!("scenes/scene{i}.sc")),
+            false,
+        )?);
+    }
+    Ok(out)
+}
+
+/// Runs the whole lab: `args` may hold `--out DIR` (default `docs/lab`), `--only SCENE` (a
+/// scene name, repeatable, for quick runs) and `--method NAME` (repeatable). Writes
+/// `speed-vs-accuracy.svg/.png`, `table.md`, `err-*.png` and `results.json`-free plain text to
+/// stdout.
+pub fn lab_main(args: impl IntoIterator<Item = String>) -> Result<()> {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let mut out = root.join("docs/lab");
+    let mut only: Vec<String> = Vec::new();
+    let mut methods: Vec<Method> = Vec::new();
+    let mut it = args.into_iter();
+    while let Some(a) = it.next() {
+        match a.as_str() {
+            "--out" => {
+                out = PathBuf::from(
+                    it.next()
+                        .ok_or_else(|| Error::usage("--out needs a folder"))?,
+                )
+            }
+            "--only" => only.push(
+                it.next()
+                    .ok_or_else(|| Error::usage("--only needs a scene"))?,
+            ),
+            "--method" => {
+                let m = it
+                    .next()
+                    .ok_or_else(|| Error::usage("--method needs a name"))?;
+                methods.push(
+                    Method::parse(&m).ok_or_else(|| Error::usage(format!("unknown method {m}")))?,
+                );
+            }
+            // cargo bench passes --bench; ignore flags meant for the harness
+            "--bench" => {}
+            other => return Err(Error::usage(format!("unknown lab argument {other}"))),
+        }
+    }
+    if methods.is_empty() {
+        methods = Method::ALL.to_vec();
+    }
+    let mut scenes = load_all(&root)?;
+    if !only.is_empty() {
+        scenes.retain(|s| only.contains(&s.name));
+    }
+    std::fs::create_dir_all(&out).map_err(|e| Error::Failed(format!("{}: {e}", out.display())))?;
+    let started = std::time::Instant::now();
+    let mut results = Vec::new();
+    for s in &scenes {
+        let r = measure::run_scene(s, &methods);
+        for m in &r.rows {
+            eprintln!(
+                "{:<14} {:<14} mism {:>7} unexc {:>6} holes {:>6} false {:>6} dmed {:.1e} dp99 {:.1e} {:>7.2} Mrays/s",
+                s.name,
+                m.method.name(),
+                m.mismatches,
+                m.unexcused,
+                m.holes,
+                m.false_hits,
+                m.depth_med,
+                m.depth_p99,
+                m.rays_per_s / 1e6
+            );
+        }
+        results.push(r);
+    }
+    report::write_all(&out, &scenes, &results, &methods)?;
+    eprintln!(
+        "lab: {} scenes x {} methods in {:.1} s, written to {}",
+        scenes.len(),
+        methods.len(),
+        started.elapsed().as_secs_f64(),
+        out.display()
+    );
+    Ok(())
+}
