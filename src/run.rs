@@ -32,6 +32,9 @@ impl From<KernelArg> for Kernel {
 /// Loads the scene and makes its camera for the requested view.
 pub fn load_view(v: &ViewSettings) -> Result<(Scene, Camera)> {
     let scene = load_scene(&v.input)?;
+    for w in &scene.warnings {
+        eprintln!("lanecast: warning: {w}");
+    }
     // hardening (issue 5): reject primitives the f32 kernels cannot represent from this eye.
     crate::scene::validate::f32_range(&scene)?;
     let fov = v.fov.or(scene.camera.fov_deg).unwrap_or(DEFAULT_FOV);

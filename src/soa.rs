@@ -240,6 +240,7 @@ mod tests {
                 Shape::Triangle([DVec3::ZERO, DVec3::Z, DVec3::X]),
             ],
             lines: vec![1, 2, 3, 4],
+            warnings: Vec::new(),
         };
         let p = Prepared::new(&scene, scene.camera.eye);
         let f = p.cast::<f32>();

@@ -4,6 +4,7 @@
 //! lines of the file, whatever its type. Parsing (`parse.rs`) turns text into this form;
 //! validation (`validate.rs`) holds the geometric rules and their tolerances.
 
+pub mod mesh;
 pub mod parse;
 pub mod validate;
 
@@ -41,8 +42,12 @@ pub struct Scene {
     pub source: PathBuf,
     pub camera: CameraSpec,
     pub shapes: Vec<Shape>,
-    /// 1-based source line of each shape, for messages (same length as `shapes`).
+    /// 1-based source line of each shape, for messages (same length as `shapes`): a mesh's
+    /// triangles all carry the line of their `mesh` statement.
     pub lines: Vec<usize>,
+    /// Things worth telling the user that do not stop the render (e.g. degenerate mesh
+    /// triangles), each a full message naming file and line.
+    pub warnings: Vec<String>,
 }
 
 impl Scene {

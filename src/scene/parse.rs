@@ -13,7 +13,7 @@
 //! Exactly one camera line, anywhere; any number of primitives. Errors point at
 //! `FILE:LINE:COL`, the column counted in characters (after the BOM), 0 for the whole line.
 
-use super::{CameraSpec, Scene, Shape, validate};
+use super::{CameraSpec, Scene, Shape, mesh, validate};
 use crate::error::{Error, Result};
 use crate::limits::{MAX_LINE_BYTES, MAX_PRIMITIVES, MAX_SCENE_BYTES};
 use glam::DVec3;
@@ -21,7 +21,7 @@ use std::fs::File;
 use std::io::Read;
 use std::path::Path;
 
-const KEYWORDS: &str = "camera, sphere, triangle, quad";
+const KEYWORDS: &str = "camera, sphere, triangle, quad, mesh";
 const CAMERA_SYNTAX: &str = "camera eye X Y Z look X Y Z up X Y Z [fov DEGREES]";
 const CAMERA_WORDS: [&str; 4] = ["eye", "look", "up", "fov"];
 
@@ -87,6 +87,7 @@ fn parse_with_limit(text: &str, file: &Path, max_primitives: usize) -> Result<Sc
     let mut camera: Option<(CameraSpec, usize)> = None;
     let mut shapes = Vec::new();
     let mut lines = Vec::new();
+    let mut warnings = Vec::new();
     let mut toks = Vec::new();
     for (i, raw) in text.split('\n').enumerate() {
         let line = raw.strip_suffix('\r').unwrap_or(raw);
@@ -117,6 +118,30 @@ fn parse_with_limit(text: &str, file: &Path, max_primitives: usize) -> Result<Sc
                 }
                 camera = Some((parse_camera(&ctx, &toks)?, ctx.line));
             }
+            "mesh" => {
+                let rest = content[first.off + first.s.len()..].trim();
+                if rest.is_empty() {
+                    return Err(ctx.at(first, "mesh needs a path: `mesh PATH`".to_string()));
+                }
+                let path = file.parent().map_or_else(|| rest.into(), |d| d.join(rest));
+                let room = max_primitives - shapes.len();
+                let (tris, degenerate) = mesh::load_obj(&path, room).map_err(|e| match e {
+                    Error::Io { source, .. } => {
+                        ctx.whole(format!("cannot read mesh {}: {source}", path.display()))
+                    }
+                    other => other,
+                })?;
+                if degenerate > 0 {
+                    warnings.push(format!(
+                        "{}:{}: mesh {}: {degenerate} degenerate triangles kept (never hit)",
+                        file.display(),
+                        ctx.line,
+                        path.display()
+                    ));
+                }
+                lines.extend(std::iter::repeat_n(ctx.line, tris.len()));
+                shapes.extend(tris.into_iter().map(Shape::Triangle));
+            }
             "sphere" | "triangle" | "quad" => {
                 if shapes.len() >= max_primitives {
                     let msg =
@@ -146,6 +171,7 @@ fn parse_with_limit(text: &str, file: &Path, max_primitives: usize) -> Result<Sc
         camera,
         shapes,
         lines,
+        warnings,
     })
 }
 

@@ -247,6 +247,7 @@ pub fn translated(scene: &Scene, by: DVec3) -> Scene {
         camera,
         shapes,
         lines: scene.lines.clone(),
+        warnings: Vec::new(),
     }
 }
 
