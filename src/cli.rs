@@ -88,7 +88,7 @@ struct View {
     /// Worker threads [default: all cores].
     #[arg(long, value_name = "N")]
     threads: Option<usize>,
-    /// Packet kernel acceleration: auto (bvh from 16 primitives on), none (test every
+    /// Packet kernel acceleration: auto (bvh from 2 primitives on), none (test every
     /// primitive), bvh.
     #[arg(long, value_enum, default_value = "auto")]
     accel: AccelArg,
