@@ -22,3 +22,9 @@ pub const MAX_EYE_DISTANCE: f64 = 1e18;
 /// Smallest sphere radius: the f32 kernels use `radius^2`, which must stay a normal f32
 /// (>= 1.2e-38): (1e-18)^2 = 1e-36.
 pub const MIN_RADIUS: f64 = 1e-18;
+/// Smallest angle, in radians (as the sine), that a polygon edge may subtend seen from the eye.
+/// The kernels' edge planes are `normalize((V_i - eye) x (V_i+1 - eye))` in f64; below this
+/// angle that cross product is mostly rounding noise (relative error ~1e-16 / angle), and where
+/// the subtraction has merged two vertices it is zero, which turns the polygon into an endless
+/// wedge (found by fuzzing: a 12-unit triangle seen from 5e17 away drew a line across the image).
+pub const MIN_EDGE_ANGLE: f64 = 1e-12;

@@ -12,7 +12,7 @@
 
 use super::{CameraSpec, Scene, Shape};
 use crate::error::Error;
-use crate::limits::{MAX_EYE_DISTANCE, MIN_RADIUS};
+use crate::limits::{MAX_EYE_DISTANCE, MIN_EDGE_ANGLE, MIN_RADIUS};
 use glam::DVec3;
 
 /// A triangle (or a corner of a quad) is degenerate when `|AB x AC| <= DEGENERATE_TOL * L^2`,
@@ -247,7 +247,8 @@ pub fn camera(c: &CameraSpec) -> Result<(), String> {
 /// so a scene is fine at any absolute position (coordinates of 3e38 with the eye nearby
 /// render), but each primitive must lie within `limits::MAX_EYE_DISTANCE` of the eye, a sphere
 /// radius must be at least `limits::MIN_RADIUS`, and the eye may not be so close to a polygon's
-/// plane (but off it) that the distance underflows f32. The first offending primitive is named
+/// plane (but off it) that the distance underflows f32, and every polygon edge must subtend at
+/// least `limits::MIN_EDGE_ANGLE` from the eye. The first offending primitive is named
 /// by its line. Polygons with an area that underflows f32 are fine: their edge planes are
 /// normalised in f64 before rounding.
 pub fn f32_range(scene: &Scene) -> Result<(), Error> {
@@ -300,7 +301,27 @@ fn polygon_f32<const N: usize>(v: &[DVec3; N], eye: DVec3, kw: &str) -> Result<(
     // Distance from the eye to the plane, as the kernels measure it (normal from f64 vertices).
     let normal = (v[1] - v[0]).cross(v[2] - v[0]).normalize_or_zero();
     let p = rel.iter().map(|r| r.dot(normal)).sum::<f64>().abs() / N as f64;
-    if p > 0.0 && p < f64::from(f32::MIN_POSITIVE) {
+    if p == 0.0 {
+        // Seen exactly edge-on: the kernels never draw it.
+        return Ok(());
+    }
+    for i in 0..N {
+        let (a, b) = (
+            rel[i].normalize_or_zero(),
+            rel[(i + 1) % N].normalize_or_zero(),
+        );
+        let sin = a.cross(b).length();
+        if sin.is_nan() || sin < MIN_EDGE_ANGLE {
+            return Err(format!(
+                "{kw} edge {}-{} subtends {sin:.1e} rad seen from the camera eye: too small at \
+                 this distance to resolve (at least {MIN_EDGE_ANGLE:e} rad); move the eye \
+                 closer or drop the {kw}",
+                VERTEX_NAMES[i],
+                VERTEX_NAMES[(i + 1) % N]
+            ));
+        }
+    }
+    if p < f64::from(f32::MIN_POSITIVE) {
         return Err(format!(
             "the camera eye is {p:.3e} from the plane of this {kw}: off the plane but too close \
              to it for f32 arithmetic (move the eye into the plane or away from it)"
