@@ -37,7 +37,8 @@
 //! carries an absolute error of ~4u, and it is cos(theta) itself; grazing hits lose precision
 //! (tests/agreement.rs bounds the relative error times cos(theta) by 48u; measured max 4.2u).
 //! Known to fail: a polygon seen exactly edge-on (O in its plane) is never hit (it has no area
-//! on screen); the eye within ~u|V - O| of an edge's line gives an ill-conditioned edge plane.
+//! on screen), nor is one with an edge whose ends are parallel seen from O (no edge plane:
+//! `tests::collapsed_edge_is_dropped`); the eye within ~u|V - O| of an edge's line gives an ill-conditioned edge plane.
 
 use crate::kernel::edge_eps;
 use crate::real::{Real, V3, dot, v3};
@@ -71,8 +72,13 @@ impl<const N: usize> PolyK<f64, N> {
         let s = facing.signum();
         let nrm = raw_normal.normalize() * s;
         let p = rel.iter().map(|r| r.dot(nrm)).sum::<f64>() / N as f64;
-        let n = std::array::from_fn(|i| rel[i].cross(rel[(i + 1) % N]).normalize_or_zero() * s);
-        let finite = p.is_finite() && nrm.is_finite() && n.iter().all(|e: &DVec3| e.is_finite());
+        // An edge whose endpoints are parallel seen from the eye has no plane: the polygon
+        // subtends no angle there, and a zero normal would pass every ray (an endless wedge).
+        let mut n = [DVec3::ZERO; N];
+        for (i, e) in n.iter_mut().enumerate() {
+            *e = rel[i].cross(rel[(i + 1) % N]).try_normalize()? * s;
+        }
+        let finite = p.is_finite() && nrm.is_finite();
         (p > 0.0 && finite).then(|| PolyK {
             n: n.map(v3),
             nrm: v3(nrm),
@@ -196,6 +202,18 @@ mod tests {
             DVec3::new(0.0, 0.0, -3.0),
         ];
         assert!(TriangleK::triangle(&v, DVec3::ZERO).is_none());
+    }
+
+    #[test]
+    fn collapsed_edge_is_dropped() {
+        // Far enough that subtracting the eye merges B and C: no edge plane for B-C.
+        let eye = DVec3::new(-5e17, 5.19, 8.68);
+        let v = [
+            DVec3::new(-6.0, 2.0, -1.0),
+            DVec3::new(6.0, 2.0, 1.0),
+            DVec3::new(6.0, 2.0, -1.0),
+        ];
+        assert!(TriangleK::triangle(&v, eye).is_none());
     }
 
     #[test]
