@@ -226,3 +226,18 @@ pub fn run_scene(s: &LabScene, methods: &[Method]) -> SceneResult {
         rows,
     }
 }
+
+/// The oracle's frame of a scene (f64 scalar, one thread).
+pub fn oracle_frame(s: &LabScene) -> LabFrame {
+    Oracle::new(&s.scene, &s.camera).render()
+}
+
+/// One method's frame of a scene, rendered once, untimed.
+pub fn method_frame(s: &LabScene, m: Method) -> LabFrame {
+    m.prepare(&s.scene, &s.camera).render()
+}
+
+/// [`measure`] of one untimed render (for tests).
+pub fn accuracy(s: &LabScene, m: Method, oracle: &LabFrame) -> Row {
+    measure(s, m, oracle, &method_frame(s, m))
+}

@@ -248,17 +248,20 @@ where
             .map_err(|e| err(&e))?
             .label(format!("{}: {}", s.method.name(), s.method.describe()))
             .legend(move |(x, y)| Circle::new((x + 10, y), 5, c.filled()));
+        // labels of points that (nearly) coincide are stacked downwards
+        let stacked = pts[..i]
+            .iter()
+            .filter(|q| (q.0 / p.0).ln().abs() < 0.5 && (q.1 / p.1).ln().abs() < 0.1)
+            .count() as i32;
         chart
-            .draw_series(std::iter::once(Text::new(
-                s.method.name().to_string(),
-                *p,
-                ("sans-serif", 15).into_font().color(&c).pos(
-                    plotters::style::text_anchor::Pos::new(
-                        plotters::style::text_anchor::HPos::Left,
-                        plotters::style::text_anchor::VPos::Bottom,
+            .draw_series(std::iter::once(
+                EmptyElement::at(*p)
+                    + Text::new(
+                        s.method.name().to_string(),
+                        (10, 16 * stacked - 18),
+                        ("sans-serif", 15).into_font().color(&c),
                     ),
-                ),
-            )))
+            ))
             .map_err(|e| err(&e))?;
     }
     chart
