@@ -217,8 +217,8 @@ pub fn load_all(root: &Path) -> Result<Vec<LabScene>> {
 
 /// Runs the whole lab: `args` may hold `--out DIR` (default `docs/lab`), `--only SCENE` (a
 /// scene name, repeatable, for quick runs) and `--method NAME` (repeatable). Writes
-/// `speed-vs-accuracy.svg/.png`, `table.md`, `err-*.png` and `results.json`-free plain text to
-/// stdout.
+/// `speed-vs-accuracy.svg`/`.png`, `table.md` and `err-*.png`, and prints one line per scene
+/// and method to stderr.
 pub fn lab_main(args: impl IntoIterator<Item = String>) -> Result<()> {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
     let mut out = root.join("docs/lab");

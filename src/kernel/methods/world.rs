@@ -5,10 +5,11 @@
 //! The default stores the same constants computed in f64 relative to the eye, then rounded.
 //!
 //! Precision: `V - eye` loses ulp(|V|, |eye|) absolutely: 2^-7 = 0.0078 for coordinates near
-//! 1e5, so a scene translated by (1e5, 1e5, 1e5) shifts its primitives by up to ~0.01 and
-//! shared edges no longer share their rounded planes exactly... the cross products and the
-//! sphere's `|oc|^2 - r^2` add their own f32 cancellation (a radius-1e4 ground 1.5 below the
-//! eye: `|oc|^2 - r^2 = 3e4` from two ~1e8 terms with ulp 8). Known to fail:
+//! 1e5, so a scene translated by (1e5, 1e5, 1e5) moves its vertices by up to ~0.004 relative
+//! to the eye, and the cross products of those rounded vectors and the sphere's
+//! `|oc|^2 - r^2` add their own f32 cancellation (a radius-1e4 ground 1.5 below the eye:
+//! `|oc|^2 - r^2 = 3e4` from two ~1e8 terms with ulp 8). Shared edges still get exactly
+//! negated normals (the same two rounded vectors), so the leaks are at shared vertices. Known to fail:
 //! `scenes/stress/translated.sc`, `ground.sc`. Measured by the lab (`world-f32` rows).
 
 use super::{cross, sub};
