@@ -405,27 +405,32 @@ pub fn error_image(oracle: &super::kits::LabFrame, row: &Row) -> Vec<u8> {
     rgb
 }
 
-/// The (scene, method) pairs with the most chart errors: at most 2 per scene, 10 in all.
+/// The (scene, method) pairs to draw: the 8 with the most chart errors (panel a), then the 4
+/// with the most non-tie mismatches (panel b) among the rest; at most 2 per scene.
 pub fn worst(results: &[SceneResult]) -> Vec<(usize, usize)> {
-    let mut all: Vec<(usize, usize, usize)> = results
-        .iter()
-        .enumerate()
-        .flat_map(|(si, r)| {
-            r.rows
-                .iter()
-                .enumerate()
-                .filter(|(_, x)| x.errors > 0)
-                .map(move |(mi, x)| (si, mi, x.errors))
-        })
-        .collect();
-    all.sort_by_key(|x| std::cmp::Reverse(x.2));
     let mut per_scene = std::collections::HashMap::new();
-    let mut out = Vec::new();
-    for (si, mi, _) in all {
-        let n = per_scene.entry(si).or_insert(0);
-        if *n < 2 && out.len() < 10 {
-            *n += 1;
-            out.push((si, mi));
+    let mut out: Vec<(usize, usize)> = Vec::new();
+    let metrics: [(fn(&Row) -> usize, usize); 2] =
+        [(|x| x.errors, 8), (|x| x.mismatches - x.ties, 12)];
+    for (metric, upto) in metrics {
+        let mut all: Vec<(usize, usize, usize)> = results
+            .iter()
+            .enumerate()
+            .flat_map(|(si, r)| {
+                r.rows
+                    .iter()
+                    .enumerate()
+                    .map(move |(mi, x)| (si, mi, metric(x)))
+            })
+            .filter(|x| x.2 > 0)
+            .collect();
+        all.sort_by_key(|x| std::cmp::Reverse(x.2));
+        for (si, mi, _) in all {
+            let n = per_scene.entry(si).or_insert(0);
+            if *n < 2 && out.len() < upto && !out.contains(&(si, mi)) {
+                *n += 1;
+                out.push((si, mi));
+            }
         }
     }
     out
