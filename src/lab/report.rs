@@ -405,13 +405,15 @@ pub fn error_image(oracle: &super::kits::LabFrame, row: &Row) -> Vec<u8> {
     rgb
 }
 
+/// A measure of a row, for ranking.
+type RowMetric = fn(&Row) -> usize;
+
 /// The (scene, method) pairs to draw: the 8 with the most chart errors (panel a), then the 4
 /// with the most non-tie mismatches (panel b) among the rest; at most 2 per scene.
 pub fn worst(results: &[SceneResult]) -> Vec<(usize, usize)> {
     let mut per_scene = std::collections::HashMap::new();
     let mut out: Vec<(usize, usize)> = Vec::new();
-    let metrics: [(fn(&Row) -> usize, usize); 2] =
-        [(|x| x.errors, 8), (|x| x.mismatches - x.ties, 12)];
+    let metrics: [(RowMetric, usize); 2] = [(|x| x.errors, 8), (|x| x.mismatches - x.ties, 12)];
     for (metric, upto) in metrics {
         let mut all: Vec<(usize, usize, usize)> = results
             .iter()
