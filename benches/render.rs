@@ -93,14 +93,24 @@ fn block_shape(c: &mut Criterion) {
         g.measurement_time(Duration::from_secs(2));
         let (w, h) = (w as usize, h as usize);
         g.bench_function("4x2", |b| {
-            b.iter(|| pool.install(|| black_box(render_packet_blocks::<4>(&packed, &tables, w, h, None))))
+            b.iter(|| {
+                pool.install(|| black_box(render_packet_blocks::<4>(&packed, &tables, w, h, None)))
+            })
         });
         g.bench_function("8x1", |b| {
-            b.iter(|| pool.install(|| black_box(render_packet_blocks::<8>(&packed, &tables, w, h, None))))
+            b.iter(|| {
+                pool.install(|| black_box(render_packet_blocks::<8>(&packed, &tables, w, h, None)))
+            })
         });
         g.finish();
     }
 }
 
-criterion_group!(benches, seed_scenes, block_shape);
+// No plots: criterion's plotters backend needs system fonts, which a clean machine lacks; the
+// numbers (and scripts/bench_table.py) need only the JSON estimates.
+criterion_group! {
+    name = benches;
+    config = Criterion::default().without_plots();
+    targets = seed_scenes, block_shape
+}
 criterion_main!(benches);

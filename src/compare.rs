@@ -178,6 +178,7 @@ fn diff_image(report: &Report, oracle: &Frame<f64>) -> Vec<u8> {
 
 /// Runs the compare command: prints the report, writes the diff image, fails past tolerance.
 pub fn compare_command(s: &CompareSettings) -> Result<()> {
+    output::install_interrupt_cleanup();
     if let Some(out) = &s.output {
         output::image_format(out)?;
         if output::same_file(out, &s.view.input) {
