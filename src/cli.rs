@@ -92,6 +92,16 @@ struct View {
     /// primitive), bvh.
     #[arg(long, value_enum, default_value = "auto")]
     accel: AccelArg,
+    /// Intersection method of the simd kernel: eplane+stable (the default: edge planes through
+    /// the eye, stable spheres), mt, watertight, plane, naive, world-f32, f64x4. Methods other
+    /// than the default run the accuracy lab's brute-force packet driver on one thread.
+    #[arg(long, value_name = "METHOD", default_value = "eplane+stable",
+          value_parser = ["eplane+stable", "mt", "watertight", "plane", "naive", "world-f32", "f64x4"])]
+    method: String,
+    /// Precision of the simd kernel's lanes: f32 (f32x8) or f64 (f64x4, two per packet: the
+    /// f64x4 method).
+    #[arg(long, value_name = "BITS", default_value = "f32", value_parser = ["f32", "f64"])]
+    precision: String,
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -195,6 +205,8 @@ pub struct ViewSettings {
     pub fov: Option<f64>,
     pub threads: Option<usize>,
     pub accel: crate::accel::Accel,
+    /// Intersection method (`--method`, with `--precision f64` meaning `f64x4`).
+    pub method: crate::lab::Method,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -288,7 +300,21 @@ fn view(v: View) -> Result<ViewSettings> {
         fov: v.fov,
         threads: v.threads,
         accel: v.accel.into(),
+        method: method(&v.method, &v.precision)?,
     })
+}
+
+/// The method named by `--method` and `--precision`.
+fn method(name: &str, precision: &str) -> Result<crate::lab::Method> {
+    use crate::lab::Method;
+    let m = Method::parse(name).expect("clap checked the name");
+    match (m, precision) {
+        (_, "f32") => Ok(m),
+        (Method::Default | Method::F64x4, _) => Ok(Method::F64x4),
+        _ => Err(Error::usage(format!(
+            "--precision {precision}: f64 packets exist for the default method only (--method {name})"
+        ))),
+    }
 }
 
 /// `WIDTHxHEIGHT` within `limits::MAX_SIDE` and `limits::MAX_PIXELS`.

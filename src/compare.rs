@@ -16,8 +16,10 @@ use crate::error::{Error, Result};
 use crate::kernel::edge_eps;
 use crate::kernel::polygon::{PolyK, QuadK, TriangleK, polygon_x1_within};
 use crate::kernel::sphere::{SphereK, sphere_x1};
+use crate::lab::Method;
 use crate::output;
 use crate::real::V3;
+use crate::render::lab_frame;
 use crate::render::{Frame, PacketScene, render_packet, render_scalar};
 use crate::run::{load_view, pool};
 use crate::scene::{Scene, Shape};
@@ -106,13 +108,28 @@ pub fn compare(scene: &Scene, camera: &Camera) -> (Report, Frame<f64>) {
 /// [`compare`] with the packet kernel's acceleration chosen by the caller.
 pub fn compare_with(scene: &Scene, camera: &Camera, accel: Accel) -> (Report, Frame<f64>) {
     let (w, h) = (camera.width as usize, camera.height as usize);
-    let prepared = Prepared::new(scene, camera.eye);
     let packet = render_packet(
         &PacketScene::new(scene, camera.eye, accel),
         &camera.tables(4, 2),
         w,
         h,
     );
+    compare_frame(scene, camera, &packet)
+}
+
+/// [`compare`] of the render of an intersection method from the lab (`--method`); the
+/// default method goes through the renderer proper, with automatic acceleration.
+pub fn compare_method(scene: &Scene, camera: &Camera, method: Method) -> (Report, Frame<f64>) {
+    match method {
+        Method::Default => compare_with(scene, camera, Accel::Auto),
+        m => compare_frame(scene, camera, &lab_frame(m, scene, camera)),
+    }
+}
+
+/// Compares a render of `scene` (ids, depths) with the f64 oracle's.
+pub fn compare_frame(scene: &Scene, camera: &Camera, packet: &Frame<f32>) -> (Report, Frame<f64>) {
+    let (w, h) = (camera.width as usize, camera.height as usize);
+    let prepared = Prepared::new(scene, camera.eye);
     let t64 = camera.tables::<f64>(1, 1);
     let oracle = render_scalar(&prepared, &t64, w, h);
     let mut r = Report {
@@ -189,11 +206,18 @@ pub fn compare_command(s: &CompareSettings) -> Result<()> {
         }
     }
     let (scene, camera) = load_view(&s.view)?;
-    let (report, oracle) =
-        pool(s.view.threads)?.install(|| compare_with(&scene, &camera, s.view.accel));
+    let method = s.view.method;
+    let (report, oracle) = pool(s.view.threads)?.install(|| match method {
+        Method::Default => compare_with(&scene, &camera, s.view.accel),
+        m => compare_method(&scene, &camera, m),
+    });
     let r = &report;
     let ppm = |n: usize| n as f64 * 1e6 / r.pixels.max(1) as f64;
     println!("scene       {}", s.view.input.display());
+    println!(
+        "method      {} against the f64 scalar oracle",
+        method.name()
+    );
     println!(
         "pixels      {} ({}x{})",
         r.pixels, camera.width, camera.height

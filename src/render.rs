@@ -181,6 +181,27 @@ fn render_scalar_counting<T: Real>(
     frame
 }
 
+/// A render by one of the lab's intersection methods (`--method` other than the default, or
+/// `--precision f64`): the lab's brute-force packet driver on the calling thread, depth rounded
+/// to f32 for output.
+pub fn lab_frame(
+    method: crate::lab::Method,
+    scene: &crate::scene::Scene,
+    camera: &crate::camera::Camera,
+) -> Frame<f32> {
+    from_lab(method.prepare(scene, camera).render())
+}
+
+/// A lab frame as the renderer's, depth rounded to f32.
+pub fn from_lab(f: crate::lab::kits::LabFrame) -> Frame<f32> {
+    Frame {
+        width: f.width,
+        height: f.height,
+        ids: f.ids,
+        depth: f.depth.iter().map(|&d| d as f32).collect(),
+    }
+}
+
 /// Which kernel renders.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Kernel {

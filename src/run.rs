@@ -1,20 +1,19 @@
 //! The render command, phase by phase: parse, setup, render, shade, write.
 
+use crate::accel::Accel;
 use crate::camera::Camera;
 use crate::cli::{KernelArg, RenderSettings, ViewSettings};
 use crate::error::{Error, Result};
+use crate::lab::Method;
 use crate::limits::{BYTES_PER_PIXEL, MAX_PIXELS};
 use crate::output;
 use crate::progress;
-use crate::render::{Kernel, Setup, strip_count};
+use crate::render::{Kernel, Setup, from_lab, strip_count};
 use crate::scene::{Scene, load_scene};
 use crate::shade::shade;
 use crate::stats::{Stats, scene_name, secs};
 use std::path::PathBuf;
 use std::time::Instant;
-
-/// The intersection methods the kernels use (triangles and quads, spheres): README "Kernels".
-pub const METHOD: &str = "eplane+stable";
 
 /// Field of view when neither the command line nor the scene gives one.
 pub const DEFAULT_FOV: f64 = 60.0;
@@ -100,7 +99,6 @@ pub fn render_command(s: &RenderSettings) -> Result<()> {
         width: s.view.width as usize,
         height: s.view.height as usize,
         kernel: s.kernel.name(),
-        method: METHOD,
         ..Stats::default()
     };
     let mut clock = Instant::now();
@@ -114,18 +112,38 @@ pub fn render_command(s: &RenderSettings) -> Result<()> {
     lap("parse", &mut stats, &mut clock);
 
     let pool = pool(s.view.threads)?;
-    let setup = Setup::with_accel(s.kernel.into(), s.view.accel, &scene, &camera);
-    stats.accel = setup.accel().name();
-    stats.threads = pool.current_num_threads();
+    // The default method runs in the renderer proper; the others in the lab's driver.
+    let method = s.view.method;
+    let (setup, lab) = if method == Method::Default {
+        let setup = Setup::with_accel(s.kernel.into(), s.view.accel, &scene, &camera);
+        stats.accel = setup.accel().name();
+        stats.threads = pool.current_num_threads();
+        (Some(setup), None)
+    } else if s.kernel != KernelArg::Simd {
+        return Err(Error::usage(format!(
+            "--method {}: methods apply to the simd kernel (--kernel {} is the oracle's own)",
+            method.name(),
+            s.kernel.name()
+        )));
+    } else {
+        stats.accel = Accel::None.name();
+        stats.threads = 1;
+        (None, Some(method.prepare(&scene, &camera)))
+    };
+    stats.method = method.name();
     lap("setup", &mut stats, &mut clock);
 
     let (w, h) = (s.view.width as usize, s.view.height as usize);
     let mut frame = None;
     for _ in 0..s.repeat {
         let start = Instant::now();
-        frame = Some(progress::with_progress(strip_count(h), |done| {
-            pool.install(|| setup.render_counting(w, h, Some(done)))
-        }));
+        frame = Some(match (&setup, &lab) {
+            (Some(setup), _) => progress::with_progress(strip_count(h), |done| {
+                pool.install(|| setup.render_counting(w, h, Some(done)))
+            }),
+            (_, Some(lab)) => from_lab(lab.render()),
+            _ => unreachable!("one of the two is prepared"),
+        });
         stats.renders.push(secs(start.elapsed()));
     }
     let frame = frame.expect("--repeat is at least 1");
