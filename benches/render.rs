@@ -14,10 +14,14 @@ use std::hint::black_box;
 use std::path::Path;
 use std::time::Duration;
 
-const KERNELS: [(&str, Kernel); 3] = [
-    ("packet", Kernel::Packet),
-    ("scalar_f32", Kernel::ScalarF32),
-    ("scalar_f64", Kernel::ScalarF64),
+/// `packet`: the default renderer (automatic acceleration: a BVH here); `packet_none`: the same
+/// packet kernel testing every primitive, the like-for-like partner of the scalar kernels,
+/// which test every primitive too.
+const KERNELS: [(&str, Kernel, Accel); 4] = [
+    ("packet", Kernel::Packet, Accel::Auto),
+    ("packet_none", Kernel::Packet, Accel::None),
+    ("scalar_f32", Kernel::ScalarF32, Accel::None),
+    ("scalar_f64", Kernel::ScalarF64, Accel::None),
 ];
 
 fn seed_scenes(c: &mut Criterion) {
@@ -55,8 +59,8 @@ fn seed_scenes(c: &mut Criterion) {
             g.sample_size(10);
             g.warm_up_time(Duration::from_millis(if quick { 200 } else { 500 }));
             g.measurement_time(Duration::from_secs(if quick { 1 } else { 2 }));
-            for (name, kernel) in KERNELS {
-                let setup = Setup::new(kernel, &scene, &camera);
+            for (name, kernel, accel) in KERNELS {
+                let setup = Setup::with_accel(kernel, accel, &scene, &camera);
                 for (threads, pool) in &pools {
                     let id = BenchmarkId::new(name, format!("t{threads}"));
                     g.bench_function(id, |b| {
