@@ -2,9 +2,17 @@
 //! scenes and the seed scenes against the f64 oracle and writes docs/lab/ (chart, table, error
 //! images). Arguments after `--` go to `lanecast::lab::lab_main` (`--only SCENE`,
 //! `--method NAME`, `--out DIR`).
+//!
+//! `cargo bench` passes `--bench`; `cargo test --all-targets` runs this target without it, and
+//! then it does nothing (so a test run never rewrites docs/lab).
 
 fn main() {
-    if let Err(e) = lanecast::lab::lab_main(std::env::args().skip(1)) {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    if !args.iter().any(|a| a == "--bench") {
+        eprintln!("lab: not run (no --bench: start it with `cargo bench --bench lab`)");
+        return;
+    }
+    if let Err(e) = lanecast::lab::lab_main(args) {
         eprintln!("lab: error: {e}");
         std::process::exit(1);
     }

@@ -249,9 +249,11 @@ where
         .iter()
         .map(|s| (metric(s).max(ZERO_FLOOR_PPM), s.seed_rays_per_s / 1e6))
         .collect();
-    let xmax = pts.iter().map(|p| p.0).fold(1.0, f64::max) * 10.0;
-    let ymin = pts.iter().map(|p| p.1).fold(f64::INFINITY, f64::min) / 2.0;
-    let ymax = pts.iter().map(|p| p.1).fold(0.0, f64::max) * 2.0;
+    // fixed decades: plotters 0.3.7's log-scale mesh (`LogCoord::key_points`) spun on some
+    // data-dependent ranges (partial runs); these ranges are known to draw
+    let xmax = pts.iter().map(|p| p.0).fold(1e7, f64::max) * 10.0;
+    let ymin = pts.iter().map(|p| p.1).fold(10.0, f64::min) / 2.0;
+    let ymax = pts.iter().map(|p| p.1).fold(500.0, f64::max) * 2.0;
     let mut chart = ChartBuilder::on(&root)
         .caption(title, ("sans-serif", 17))
         .margin(16)
@@ -465,6 +467,12 @@ pub fn write_all(
         let path = out.join(format!("err-{}-{}.png", r.name, row.method.name()));
         let (w, h) = (r.oracle.width as u32, r.oracle.height as u32);
         output::write_image(&path, w, h, &error_image(&r.oracle, row))?;
+    }
+    // plotters 0.3.7 spins in its log-scale mesh (`LogCoord::key_points`) when every point sits
+    // on the zero floor (seen with `--only behind`): partial runs without any error skip the chart
+    if sums.len() < 2 || sums.iter().all(|s| s.nontie_ppm == 0.0) {
+        eprintln!("lab: chart skipped (fewer than 2 methods, or no error to plot)");
+        return Ok(());
     }
     chart(out, &sums)
 }
