@@ -60,7 +60,7 @@ impl Report {
 
 /// f64 distance to `shape` along `d` from `eye`, with its boundary moved outward by `slack`
 /// radians (inward when negative).
-fn hit_with_slack(shape: &Shape, eye: DVec3, d: V3<f64>, slack: f64) -> Option<f64> {
+pub fn hit_with_slack(shape: &Shape, eye: DVec3, d: V3<f64>, slack: f64) -> Option<f64> {
     match shape {
         Shape::Sphere { center, radius } => {
             let r = radius + slack * (*center - eye).length();

@@ -15,6 +15,7 @@ use crate::kernel::methods::sphere_naive::{NaiveK, naive_x1, naive_x8};
 use crate::kernel::methods::wide64::{Hit4d, dir_x4d, polygon_x4d, sphere_x4d};
 use crate::kernel::methods::woop::{WoopK, WoopRay, WoopRay8, woop_ray, woop_x1, woop_x8};
 use crate::kernel::methods::{quad_split, world};
+use crate::kernel::packet::block_rays;
 use crate::kernel::polygon::{PolyK, QuadK, TriangleK, polygon_x1, polygon_x8};
 use crate::kernel::sphere::{SphereK, sphere_x1, sphere_x8};
 use crate::kernel::{Hit, Hit8, LANES};
@@ -397,7 +398,7 @@ impl<S: SphereFamily, P: PolyFamily> Kit<S, P> {
         let mut f = LabFrame::new(w, h);
         for by in (0..h).step_by(BH) {
             for bx in (0..w).step_by(BW) {
-                let (d, active) = block_rays(&self.tables, bx, by, w, h);
+                let (d, active) = block_rays::<BW>(&self.tables, bx, by, w, h);
                 let mut hit = Hit8::new(active);
                 self.trace_x8(&d, &mut hit);
                 let (t, id) = (hit.t.to_array(), hit.id.to_array());
@@ -426,23 +427,6 @@ impl<S: SphereFamily, P: PolyFamily> Kit<S, P> {
         }
         f
     }
-}
-
-/// Rays of the 4x2 block at (x0, y0) and the mask of lanes inside the image (tables padded).
-#[inline(always)]
-pub fn block_rays(
-    tables: &RayTables<f32>,
-    x0: usize,
-    y0: usize,
-    width: usize,
-    height: usize,
-) -> ([f32x8; 3], f32x8) {
-    let sx = f32x8::new(std::array::from_fn(|i| tables.sx[x0 + i % BW]));
-    let sy = f32x8::new(std::array::from_fn(|i| tables.sy[y0 + i / BW]));
-    let inside = |i: usize| x0 + i % BW < width && y0 + i / BW < height;
-    let active =
-        f32x8::new(std::array::from_fn(|i| if inside(i) { 1.0 } else { 0.0 })).simd_gt(f32x8::ZERO);
-    (tables.dir_x8(sx, sy), active)
 }
 
 /// The default methods in f64x4 lanes (`methods::wide64`): a 4x2 block is two f64x4 rows, both

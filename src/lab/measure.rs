@@ -22,10 +22,7 @@
 
 use super::kits::{LabFrame, Oracle};
 use super::{LabScene, Method, Render};
-use crate::compare::{EDGE_BAND, TIE_REL};
-use crate::kernel::edge_eps;
-use crate::kernel::polygon::{QuadK, TriangleK, polygon_x1_within};
-use crate::kernel::sphere::{SphereK, sphere_x1};
+use crate::compare::{EDGE_BAND, TIE_REL, hit_with_slack};
 use crate::real::V3;
 use crate::scene::Shape;
 use glam::DVec3;
@@ -95,23 +92,6 @@ pub fn time_render(r: &dyn Render) -> (LabFrame, f64) {
     (frame, rays / best.max(1e-9))
 }
 
-/// f64 distance to `shape` along `d` from `eye`, its boundary moved outward by `slack` radians
-/// (the edge-plane and stable-sphere tests of the oracle).
-pub fn hit64(shape: &Shape, eye: DVec3, d: V3<f64>, slack: f64) -> Option<f64> {
-    match shape {
-        Shape::Sphere { center, radius } => {
-            let r = radius + slack * (*center - eye).length();
-            (r > 0.0)
-                .then(|| sphere_x1(&SphereK::new(*center, r, eye), d))
-                .flatten()
-        }
-        Shape::Triangle(v) => {
-            polygon_x1_within(&TriangleK::triangle(v, eye)?, d, edge_eps::<f64>() + slack)
-        }
-        Shape::Quad(v) => polygon_x1_within(&QuadK::quad(v, eye)?, d, edge_eps::<f64>() + slack),
-    }
-}
-
 /// Measures `frame` (a method's render) against `oracle` on scene `s`.
 pub fn measure(s: &LabScene, method: Method, oracle: &LabFrame, frame: &LabFrame) -> Row {
     let (w, h) = (oracle.width, oracle.height);
@@ -129,7 +109,7 @@ pub fn measure(s: &LabScene, method: Method, oracle: &LabFrame, frame: &LabFrame
             let p = (d + (s.camera.r * a.cos() + s.camera.u * a.sin()) * delta).normalize();
             closed_ids
                 .iter()
-                .any(|&i| hit64(&shapes[i], eye, p.to_array(), 0.0).is_some())
+                .any(|&i| hit_with_slack(&shapes[i], eye, p.to_array(), 0.0).is_some())
         })
     };
     let mut row = Row {
@@ -161,11 +141,12 @@ pub fn measure(s: &LabScene, method: Method, oracle: &LabFrame, frame: &LabFrame
         }
         let d = t64.dir_x1(i % w, i / w);
         let (sa, sb) = (shape(a), shape(b));
-        let wide_a = sa.and_then(|x| hit64(x, eye, d, EDGE_BAND));
-        let wide_b = sb.and_then(|x| hit64(x, eye, d, EDGE_BAND));
+        let wide_a = sa.and_then(|x| hit_with_slack(x, eye, d, EDGE_BAND));
+        let wide_b = sb.and_then(|x| hit_with_slack(x, eye, d, EDGE_BAND));
         let near_edge = |x: Option<&Shape>| {
             x.is_some_and(|x| {
-                hit64(x, eye, d, EDGE_BAND).is_some() != hit64(x, eye, d, -EDGE_BAND).is_some()
+                hit_with_slack(x, eye, d, EDGE_BAND).is_some()
+                    != hit_with_slack(x, eye, d, -EDGE_BAND).is_some()
             })
         };
         let mut c = match (wide_a, wide_b) {
