@@ -11,11 +11,11 @@
 //! when 0 < t; it replaces the current one when t is smaller, or when t is exactly equal and its
 //! primitive id is lower (exact ties go to the lower id).
 
+pub mod methods;
 pub mod packet;
 pub mod polygon;
 pub mod scalar;
 pub mod sphere;
-pub mod methods;
 
 use crate::real::Real;
 use wide::f32x8;
