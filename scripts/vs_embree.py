@@ -109,7 +109,7 @@ def table(rows, target):
 
 def chart(rows, path):
     """Log-log render time against primitive count: lanecast and Embree, spheres and triangles."""
-    W, H, L, R, T, B = 640, 420, 70, 150, 30, 50
+    W, H, L, R, T, B = 700, 420, 70, 210, 30, 50
     pts = [r for r in rows if r["threads"] == 1]
     xs = [r["prims"] for r in pts]
     ys = [r[k] * 1e3 for r in pts for k in ("embree_s", "lanecast_s")]
