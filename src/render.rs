@@ -28,7 +28,8 @@ pub struct Frame<D> {
 }
 
 impl<D: Copy> Frame<D> {
-    fn new(width: usize, height: usize, background: D) -> Frame<D> {
+    /// A frame of background: id -1 and depth `background` everywhere.
+    pub fn new(width: usize, height: usize, background: D) -> Frame<D> {
         Frame {
             width,
             height,
@@ -189,11 +190,12 @@ pub fn lab_frame(
     scene: &crate::scene::Scene,
     camera: &crate::camera::Camera,
 ) -> Frame<f32> {
-    from_lab(method.prepare(scene, camera).render())
+    f32_depth(method.prepare(scene, camera).render())
 }
 
-/// A lab frame as the renderer's, depth rounded to f32.
-pub fn from_lab(f: crate::lab::kits::LabFrame) -> Frame<f32> {
+/// An f64 frame (the oracle's, a lab method's) with its depths rounded once to f32, the
+/// precision of every output buffer.
+pub fn f32_depth(f: Frame<f64>) -> Frame<f32> {
     Frame {
         width: f.width,
         height: f.height,
@@ -277,13 +279,7 @@ impl Setup {
             Setup::Packet(p, t) => render_packet_blocks::<BLOCK_W>(p, t, width, height, progress),
             Setup::ScalarF32(p, t) => render_scalar_counting(p, t, width, height, progress),
             Setup::ScalarF64(p, t) => {
-                let f = render_scalar_counting(p, t, width, height, progress);
-                Frame {
-                    width,
-                    height,
-                    ids: f.ids,
-                    depth: f.depth.iter().map(|&d| d as f32).collect(),
-                }
+                f32_depth(render_scalar_counting(p, t, width, height, progress))
             }
         }
     }

@@ -8,7 +8,7 @@ use crate::lab::Method;
 use crate::limits::{BYTES_PER_PIXEL, MAX_PIXELS};
 use crate::output;
 use crate::progress;
-use crate::render::{Kernel, Setup, from_lab, strip_count};
+use crate::render::{Kernel, Setup, f32_depth, strip_count};
 use crate::scene::{Scene, load_scene};
 use crate::shade::shade;
 use crate::stats::{Stats, scene_name, secs};
@@ -141,7 +141,7 @@ pub fn render_command(s: &RenderSettings) -> Result<()> {
             (Some(setup), _) => progress::with_progress(strip_count(h), |done| {
                 pool.install(|| setup.render_counting(w, h, Some(done)))
             }),
-            (_, Some(lab)) => from_lab(lab.render()),
+            (_, Some(lab)) => f32_depth(lab.render()),
             _ => unreachable!("one of the two is prepared"),
         });
         stats.renders.push(secs(start.elapsed()));

@@ -17,10 +17,12 @@ use crate::kernel::methods::woop::{WoopK, WoopRay, WoopRay8, woop_ray, woop_x1, 
 use crate::kernel::methods::{quad_split, world};
 use crate::kernel::packet::block_rays;
 use crate::kernel::polygon::{PolyK, QuadK, TriangleK, polygon_x1, polygon_x8};
+use crate::kernel::scalar::trace_x1;
 use crate::kernel::sphere::{SphereK, sphere_x1, sphere_x8};
 use crate::kernel::{Hit, Hit8, LANES};
 use crate::real::V3;
 use crate::scene::{Scene, Shape};
+use crate::soa::{Group, Prepared};
 use glam::DVec3;
 use std::marker::PhantomData;
 use wide::{f32x8, f64x4};
@@ -29,25 +31,8 @@ use wide::{f32x8, f64x4};
 pub const BW: usize = 4;
 pub const BH: usize = LANES / BW;
 
-/// Per-pixel results, row 0 at the top: id (-1 background) and distance (+inf background).
-#[derive(Debug, Clone, PartialEq)]
-pub struct LabFrame {
-    pub width: usize,
-    pub height: usize,
-    pub ids: Vec<i32>,
-    pub depth: Vec<f64>,
-}
-
-impl LabFrame {
-    fn new(width: usize, height: usize) -> LabFrame {
-        LabFrame {
-            width,
-            height,
-            ids: vec![-1; width * height],
-            depth: vec![f64::INFINITY; width * height],
-        }
-    }
-}
+/// Per-pixel results of a lab render: the renderer's frame, depth kept in f64.
+pub type LabFrame = crate::render::Frame<f64>;
 
 /// A sphere method: constants and its 1- and 8-lane forms.
 pub trait SphereFamily {
@@ -395,7 +380,7 @@ impl<S: SphereFamily, P: PolyFamily> Kit<S, P> {
     /// The image in 4x2 packets, on the calling thread.
     pub fn render_x8(&self) -> LabFrame {
         let (w, h) = (self.width, self.height);
-        let mut f = LabFrame::new(w, h);
+        let mut f = LabFrame::new(w, h, f64::INFINITY);
         for by in (0..h).step_by(BH) {
             for bx in (0..w).step_by(BW) {
                 let (d, active) = block_rays::<BW>(&self.tables, bx, by, w, h);
@@ -417,7 +402,7 @@ impl<S: SphereFamily, P: PolyFamily> Kit<S, P> {
     /// The image one ray at a time (f32, same method).
     pub fn render_x1(&self) -> LabFrame {
         let (w, h) = (self.width, self.height);
-        let mut f = LabFrame::new(w, h);
+        let mut f = LabFrame::new(w, h, f64::INFINITY);
         for y in 0..h {
             for x in 0..w {
                 let hit = self.trace_x1(self.tables.dir_x1(x, y));
@@ -432,9 +417,8 @@ impl<S: SphereFamily, P: PolyFamily> Kit<S, P> {
 /// The default methods in f64x4 lanes (`methods::wide64`): a 4x2 block is two f64x4 rows, both
 /// tested against each primitive before the next.
 pub struct Kit64 {
-    pub spheres: Vec<(SphereK<f64>, f64)>,
-    pub triangles: Vec<(TriangleK<f64>, f64)>,
-    pub quads: Vec<(QuadK<f64>, f64)>,
+    /// The oracle's own f64 constants.
+    pub prepared: Prepared<f64>,
     pub tables: RayTables<f64>,
     pub width: usize,
     pub height: usize,
@@ -442,27 +426,20 @@ pub struct Kit64 {
 
 impl Kit64 {
     pub fn new(scene: &Scene, camera: &Camera) -> Kit64 {
-        let o = Oracle::new(scene, camera);
         Kit64 {
-            spheres: o.spheres,
-            triangles: o.triangles,
-            quads: o.quads,
+            prepared: Prepared::new(scene, camera.eye),
             tables: camera.tables(BW as u32, BH as u32),
-            width: o.width,
-            height: o.height,
+            width: camera.width as usize,
+            height: camera.height as usize,
         }
     }
 
     #[inline(always)]
-    fn poly2<const N: usize>(
-        g: &[(PolyK<f64, N>, f64)],
-        d: &[[f64x4; 3]; 2],
-        hit: &mut [Hit4d; 2],
-    ) {
-        for (k, id) in g {
+    fn poly2<const N: usize>(g: &Group<PolyK<f64, N>>, d: &[[f64x4; 3]; 2], hit: &mut [Hit4d; 2]) {
+        for (k, &id) in g.k.iter().zip(&g.id) {
             for h in 0..2 {
                 if let Some((m, t)) = polygon_x4d(k, &d[h]) {
-                    hit[h].update(m, t, *id);
+                    hit[h].update(m, t, id as f64);
                 }
             }
         }
@@ -471,20 +448,21 @@ impl Kit64 {
     /// Nearest hits of two rows of four rays.
     #[inline]
     pub fn trace_x4d2(&self, d: &[[f64x4; 3]; 2], hit: &mut [Hit4d; 2]) {
-        for (k, id) in &self.spheres {
+        let s = &self.prepared.spheres;
+        for (k, &id) in s.k.iter().zip(&s.id) {
             for h in 0..2 {
                 if let Some((m, t)) = sphere_x4d(k, &d[h]) {
-                    hit[h].update(m, t, *id);
+                    hit[h].update(m, t, id as f64);
                 }
             }
         }
-        Self::poly2(&self.triangles, d, hit);
-        Self::poly2(&self.quads, d, hit);
+        Self::poly2(&self.prepared.triangles, d, hit);
+        Self::poly2(&self.prepared.quads, d, hit);
     }
 
     pub fn render(&self) -> LabFrame {
         let (w, h) = (self.width, self.height);
-        let mut f = LabFrame::new(w, h);
+        let mut f = LabFrame::new(w, h, f64::INFINITY);
         let t = &self.tables;
         for by in (0..h).step_by(BH) {
             for bx in (0..w).step_by(BW) {
@@ -516,12 +494,10 @@ impl Kit64 {
     }
 }
 
-/// The f64 scalar oracle: the default methods' f64 constants, one ray at a time (the same
-/// computation as `kernel::scalar::trace_x1` on `soa::Prepared<f64>`).
+/// The f64 scalar oracle, exactly as `lanecast --kernel scalar` computes it (`soa::Prepared<f64>`
+/// and `kernel::scalar::trace_x1`), one ray at a time on the calling thread.
 pub struct Oracle {
-    pub spheres: Vec<(SphereK<f64>, f64)>,
-    pub triangles: Vec<(TriangleK<f64>, f64)>,
-    pub quads: Vec<(QuadK<f64>, f64)>,
+    pub prepared: Prepared<f64>,
     pub tables: RayTables<f64>,
     pub width: usize,
     pub height: usize,
@@ -529,59 +505,21 @@ pub struct Oracle {
 
 impl Oracle {
     pub fn new(scene: &Scene, camera: &Camera) -> Oracle {
-        let eye = camera.eye;
-        let mut o = Oracle {
-            spheres: Vec::new(),
-            triangles: Vec::new(),
-            quads: Vec::new(),
+        Oracle {
+            prepared: Prepared::new(scene, camera.eye),
             tables: camera.tables(1, 1),
             width: camera.width as usize,
             height: camera.height as usize,
-        };
-        for (id, shape) in scene.shapes.iter().enumerate() {
-            let id = id as f64;
-            match shape {
-                Shape::Sphere { center, radius } => {
-                    o.spheres.push((SphereK::new(*center, *radius, eye), id))
-                }
-                Shape::Triangle(v) => {
-                    if let Some(k) = TriangleK::triangle(v, eye) {
-                        o.triangles.push((k, id))
-                    }
-                }
-                Shape::Quad(v) => {
-                    if let Some(k) = QuadK::quad(v, eye) {
-                        o.quads.push((k, id))
-                    }
-                }
-            }
         }
-        o
     }
 
     pub fn trace(&self, d: V3<f64>) -> Hit<f64> {
-        let mut hit = Hit::NONE;
-        for (k, id) in &self.spheres {
-            if let Some(t) = sphere_x1(k, d) {
-                hit.update(t, *id as i32);
-            }
-        }
-        for (k, id) in &self.triangles {
-            if let Some(t) = polygon_x1(k, d) {
-                hit.update(t, *id as i32);
-            }
-        }
-        for (k, id) in &self.quads {
-            if let Some(t) = polygon_x1(k, d) {
-                hit.update(t, *id as i32);
-            }
-        }
-        hit
+        trace_x1(&self.prepared, d)
     }
 
     pub fn render(&self) -> LabFrame {
         let (w, h) = (self.width, self.height);
-        let mut f = LabFrame::new(w, h);
+        let mut f = LabFrame::new(w, h, f64::INFINITY);
         for y in 0..h {
             for x in 0..w {
                 let hit = self.trace(self.tables.dir_x1(x, y));
