@@ -48,7 +48,7 @@ pub struct Report {
     pub same_hits: usize,
     pub depth_rel_max: f64,
     pub depth_rel_p99: f64,
-    /// Per pixel: 0 agree, 1 tie, 2 edge, 3 unexcused.
+    /// Per pixel: 0 agree, [`TIE`], [`EDGE`] or [`UNEXCUSED`].
     pub class: Vec<u8>,
 }
 
@@ -87,7 +87,7 @@ fn classify(scene: &Scene, eye: DVec3, d: V3<f64>, a: i32, b: i32) -> u8 {
         if let (Some(ta), Some(tb)) = (ta, tb)
             && (ta - tb).abs() <= TIE_REL * ta.max(tb)
         {
-            return 1;
+            return TIE;
         }
     }
     let near_edge = |s: Option<&Shape>| {
@@ -96,7 +96,11 @@ fn classify(scene: &Scene, eye: DVec3, d: V3<f64>, a: i32, b: i32) -> u8 {
                 != hit_with_slack(s, eye, d, -EDGE_BAND).is_some()
         })
     };
-    if near_edge(sa) || near_edge(sb) { 2 } else { 3 }
+    if near_edge(sa) || near_edge(sb) {
+        EDGE
+    } else {
+        UNEXCUSED
+    }
 }
 
 /// Renders `scene` with both kernels (in the current rayon pool) and compares them, the packet
@@ -151,8 +155,8 @@ pub fn compare_frame(scene: &Scene, camera: &Camera, packet: &Frame<f32>) -> (Re
         r.class[i] = c;
         r.mismatches += 1;
         match c {
-            1 => r.ties += 1,
-            2 => r.edges += 1,
+            TIE => r.ties += 1,
+            EDGE => r.edges += 1,
             _ => r.unexcused += 1,
         }
     }
@@ -166,9 +170,25 @@ pub fn compare_frame(scene: &Scene, camera: &Camera, packet: &Frame<f32>) -> (Re
     (r, oracle)
 }
 
-/// The diff image: the oracle's render at a third of its brightness, mismatches marked in
-/// yellow (tie), cyan (edge band) or red (unexcused).
-fn diff_image(report: &Report, oracle: &Frame<f64>) -> Vec<u8> {
+/// Mismatch classes of [`Report::class`].
+pub const TIE: u8 = 1;
+pub const EDGE: u8 = 2;
+pub const UNEXCUSED: u8 = 3;
+
+/// Marking colour of a mismatch class: tie yellow, edge band cyan, unexcused red.
+pub fn class_colour(c: u8) -> Option<[u8; 3]> {
+    match c {
+        TIE => Some([255, 255, 0]),
+        EDGE => Some([0, 255, 255]),
+        UNEXCUSED => Some([255, 0, 0]),
+        _ => None,
+    }
+}
+
+/// An error picture: the oracle's render (random colours) at a third of its brightness, with
+/// `mark(pixel)` painted over the pixels it returns a colour for. `compare -o` and the lab's
+/// error images both use it.
+pub fn marked_render(oracle: &Frame<f64>, mark: impl Fn(usize) -> Option<[u8; 3]>) -> Vec<u8> {
     let depth: Vec<f32> = oracle.depth.iter().map(|&d| d as f32).collect();
     let mut rgb = shade(
         &oracle.ids,
@@ -178,19 +198,18 @@ fn diff_image(report: &Report, oracle: &Frame<f64>) -> Vec<u8> {
         Variation::Linear,
         0,
     );
-    for (px, &c) in rgb.chunks_mut(3).zip(&report.class) {
-        let mark: Option<[u8; 3]> = match c {
-            1 => Some([255, 255, 0]),
-            2 => Some([0, 255, 255]),
-            3 => Some([255, 0, 0]),
-            _ => None,
-        };
-        match mark {
+    for (i, px) in rgb.chunks_mut(3).enumerate() {
+        match mark(i) {
             Some(m) => px.copy_from_slice(&m),
             None => px.iter_mut().for_each(|v| *v /= 3),
         }
     }
     rgb
+}
+
+/// The diff image of `compare -o`.
+fn diff_image(report: &Report, oracle: &Frame<f64>) -> Vec<u8> {
+    marked_render(oracle, |i| class_colour(report.class[i]))
 }
 
 /// Runs the compare command: prints the report, writes the diff image, fails past tolerance.

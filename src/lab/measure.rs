@@ -29,9 +29,7 @@ use glam::DVec3;
 use std::time::Instant;
 
 /// Class of a pixel (low two bits) and flags.
-pub const TIE: u8 = 1;
-pub const EDGE: u8 = 2;
-pub const UNEXCUSED: u8 = 3;
+pub use crate::compare::{EDGE, TIE, UNEXCUSED};
 pub const HOLE: u8 = 4;
 pub const FALSE_HIT: u8 = 8;
 

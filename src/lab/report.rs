@@ -2,11 +2,11 @@
 //! `speed-vs-accuracy.svg`/`.png` (plotters: SVG backend, and the bitmap backend drawing into
 //! a buffer that the crate's own `image` dependency encodes as PNG), and `err-*.png` images.
 
-use super::measure::{EDGE, FALSE_HIT, HOLE, Row, SceneResult, TIE, UNEXCUSED};
+use super::measure::{FALSE_HIT, HOLE, Row, SceneResult};
 use super::{LabScene, Method};
+use crate::compare::{class_colour, marked_render};
 use crate::error::{Error, Result};
 use crate::output;
-use crate::shade::{ColorMode, Variation, shade};
 use plotters::prelude::*;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -377,34 +377,16 @@ pub fn chart(out: &Path, sums: &[Summary]) -> Result<()> {
 /// The error image: the oracle's render at a third of its brightness, mismatches marked: tie
 /// yellow, edge band cyan, unexcused red, hole magenta, false hit white.
 pub fn error_image(oracle: &super::kits::LabFrame, row: &Row) -> Vec<u8> {
-    let depth: Vec<f32> = oracle.depth.iter().map(|&d| d as f32).collect();
-    let mut rgb = shade(
-        &oracle.ids,
-        &depth,
-        oracle.width,
-        ColorMode::Random,
-        Variation::Linear,
-        0,
-    );
-    for (px, &c) in rgb.chunks_mut(3).zip(&row.class) {
-        let mark = if c & FALSE_HIT != 0 {
+    marked_render(oracle, |i| {
+        let c = row.class[i];
+        if c & FALSE_HIT != 0 {
             Some([255, 255, 255])
         } else if c & HOLE != 0 {
             Some([255, 0, 255])
         } else {
-            match c & 3 {
-                TIE => Some([255, 255, 0]),
-                EDGE => Some([0, 255, 255]),
-                UNEXCUSED => Some([255, 0, 0]),
-                _ => None,
-            }
-        };
-        match mark {
-            Some(m) => px.copy_from_slice(&m),
-            None => px.iter_mut().for_each(|v| *v /= 3),
+            class_colour(c & 3)
         }
-    }
-    rgb
+    })
 }
 
 /// A measure of a row, for ranking.
