@@ -41,6 +41,7 @@
 //! `tests::collapsed_edge_is_dropped`); the eye within ~u|V - O| of an edge's line gives an ill-conditioned edge plane.
 
 use crate::kernel::edge_eps;
+use crate::limits::MIN_EDGE_ANGLE;
 use crate::real::{Real, V3, dot, v3};
 use glam::DVec3;
 use wide::f32x8;
@@ -83,11 +84,19 @@ impl<const N: usize> PolyK<f64, N> {
         let s = facing.signum();
         let nrm = raw_normal.normalize() * s;
         let p = rel.iter().map(|r| r.dot(nrm)).sum::<f64>() / N as f64;
-        // An edge whose endpoints are parallel seen from the eye has no plane: the polygon
-        // subtends no angle there, and a zero normal would pass every ray (an endless wedge).
+        // An edge subtending less than `limits::MIN_EDGE_ANGLE` from the eye has no reliable
+        // plane: its cross product is rounding noise (or zero), and a wrong or zero normal
+        // passes every ray on one side (an endless wedge). Such a polygon is never drawn.
+        // `validate::f32_range` refuses these scenes with a message; this keeps the kernels
+        // safe for any caller of the library.
         let mut n = [DVec3::ZERO; N];
         for (i, e) in n.iter_mut().enumerate() {
-            *e = rel[i].cross(rel[(i + 1) % N]).try_normalize()? * s;
+            let (a, b) = (rel[i], rel[(i + 1) % N]);
+            let c = a.cross(b);
+            if c.length() < MIN_EDGE_ANGLE * a.length() * b.length() {
+                return None;
+            }
+            *e = c.try_normalize()? * s; // None for NaN too
         }
         let finite = p.is_finite() && nrm.is_finite();
         (p > 0.0 && finite).then(|| PolyK {
@@ -229,6 +238,23 @@ mod tests {
         assert!(
             TriangleK::triangle(&v, eye).is_some(),
             "1e-6 off the plane is still drawn"
+        );
+    }
+
+    #[test]
+    fn edge_below_the_smallest_angle_is_dropped() {
+        // A 1e-6 triangle 1e7 away: its edges subtend 1e-13 rad from the eye.
+        let eye = DVec3::new(0.0, 0.0, 1e7);
+        let v = [
+            DVec3::ZERO,
+            DVec3::new(1e-6, 0.0, 0.0),
+            DVec3::new(0.0, 1e-6, 0.0),
+        ];
+        assert!(TriangleK::triangle(&v, eye).is_none());
+        let near = DVec3::new(0.0, 0.0, 1.0);
+        assert!(
+            TriangleK::triangle(&v, near).is_some(),
+            "1e-6 rad edges are drawn"
         );
     }
 
