@@ -27,8 +27,10 @@
 //! least one of the two tests passes on every ray. At a shared vertex, each polygon's normals
 //! were rounded separately, so their planes may miss the vertex direction by ~1u; `eps`
 //! (`kernel::edge_eps`, 8u, twice the error of `d . n`) covers that gap, so a ray through a
-//! vertex hits at least one polygon around it. Proven by `tests::fan_*`, `tests::grid_*` and the
-//! closed-mesh agreement tests in tests/agreement.rs.
+//! vertex hits at least one polygon around it. Proven by
+//! `tests::fan_leaves_no_hole_at_shared_edges_and_vertex` here, the closed-mesh and grid tests of
+//! tests/agreement.rs (`*_has_no_holes`, pixel rays through shared edges and vertices) and
+//! `default_leaves_no_holes_on_closed_meshes` in tests/stability.rs.
 //!
 //! Precision (f32, u = 2^-24): hit/miss is decided to within ~4u radians of each edge plane; the
 //! `eps` margin widens every polygon by 8u radians (4.8e-7 rad: 1e-4 of a pixel at 1920 wide and
