@@ -7,8 +7,8 @@
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use lanecast::accel::Accel;
 use lanecast::camera::Camera;
+use lanecast::camera::DEFAULT_FOV;
 use lanecast::render::{Kernel, PacketScene, Setup, render_packet_blocks};
-use lanecast::run::DEFAULT_FOV;
 use lanecast::scene::load_scene;
 use std::hint::black_box;
 use std::path::Path;

@@ -15,8 +15,8 @@ use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_m
 use glam::DVec3;
 use lanecast::accel::Accel;
 use lanecast::camera::Camera;
+use lanecast::camera::DEFAULT_FOV;
 use lanecast::render::{PacketScene, render_packet};
-use lanecast::run::DEFAULT_FOV;
 use lanecast::scene::{CameraSpec, Scene, Shape, load_scene};
 use std::hint::black_box;
 use std::path::Path;

@@ -15,8 +15,10 @@
 //! order written, with no fused multiply-add. [`RayTables::dir_x1`] and [`RayTables::dir_x8`]
 //! perform the same operations in the same order, so in f32 they give bit-identical rays.
 
+use crate::error::{Error, Result};
+use crate::limits::{MAX_PIXELS, MAX_SIDE};
 use crate::real::{Real, V3, dot, v3};
-use crate::scene::CameraSpec;
+use crate::scene::{CameraSpec, Scene};
 use glam::DVec3;
 use wide::f32x8;
 
@@ -42,7 +44,36 @@ pub struct Camera {
     pub half_h: f64,
 }
 
+/// Horizontal field of view, in degrees, when neither the caller nor the scene gives one.
+pub const DEFAULT_FOV: f64 = 60.0;
+
 impl Camera {
+    /// The camera of `scene` for a `width` x `height` image, with horizontal field of view
+    /// `fov_deg` when given, else the scene's, else [`DEFAULT_FOV`]. Fails on a size outside
+    /// `1..=limits::MAX_SIDE` per side or past `limits::MAX_PIXELS`, or a field of view outside
+    /// (0, 180) degrees.
+    pub fn for_scene(
+        scene: &Scene,
+        width: u32,
+        height: u32,
+        fov_deg: Option<f64>,
+    ) -> Result<Camera> {
+        if width == 0 || height == 0 || width > MAX_SIDE || height > MAX_SIDE {
+            return Err(Error::usage(format!(
+                "image size {width}x{height}: each side must be 1 to {MAX_SIDE} pixels"
+            )));
+        }
+        if width as u64 * height as u64 > MAX_PIXELS {
+            return Err(Error::usage(format!(
+                "image size {width}x{height}: at most {MAX_PIXELS} pixels per image"
+            )));
+        }
+        let fov = fov_deg.or(scene.camera.fov_deg).unwrap_or(DEFAULT_FOV);
+        crate::scene::validate::fov(fov)
+            .map_err(|m| Error::usage(format!("field of view {fov}: {m}")))?;
+        Ok(Camera::new(&scene.camera, fov, width, height))
+    }
+
     /// The camera of a validated spec (`scene::validate::camera` has accepted it) with a
     /// horizontal field of view in degrees, 0 < fov < 180.
     pub fn new(spec: &CameraSpec, fov_deg: f64, width: u32, height: u32) -> Camera {

@@ -206,7 +206,7 @@ pub struct ViewSettings {
     pub threads: Option<usize>,
     pub accel: crate::accel::Accel,
     /// Intersection method (`--method`, with `--precision f64` meaning `f64x4`).
-    pub method: crate::lab::Method,
+    pub method: crate::render::Method,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -305,8 +305,8 @@ fn view(v: View) -> Result<ViewSettings> {
 }
 
 /// The method named by `--method` and `--precision`.
-fn method(name: &str, precision: &str) -> Result<crate::lab::Method> {
-    use crate::lab::Method;
+fn method(name: &str, precision: &str) -> Result<crate::render::Method> {
+    use crate::render::Method;
     let m = Method::parse(name).expect("clap checked the name");
     match (m, precision) {
         (_, "f32") => Ok(m),

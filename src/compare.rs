@@ -11,17 +11,12 @@
 
 use crate::accel::Accel;
 use crate::camera::Camera;
-use crate::cli::CompareSettings;
-use crate::error::{Error, Result};
 use crate::kernel::edge_eps;
 use crate::kernel::polygon::{PolyK, QuadK, TriangleK, polygon_x1_within};
 use crate::kernel::sphere::{SphereK, sphere_x1};
-use crate::lab::Method;
-use crate::output;
 use crate::real::V3;
-use crate::render::lab_frame;
-use crate::render::{Frame, PacketScene, render_packet, render_scalar};
-use crate::run::{load_view, pool};
+use crate::render::Method;
+use crate::render::{Frame, PacketScene, f32_depth, render_packet, render_scalar};
 use crate::scene::{Scene, Shape};
 use crate::shade::{ColorMode, Variation, shade};
 use crate::soa::Prepared;
@@ -121,12 +116,12 @@ pub fn compare_with(scene: &Scene, camera: &Camera, accel: Accel) -> (Report, Fr
     compare_frame(scene, camera, &packet)
 }
 
-/// [`compare`] of the render of an intersection method from the lab (`--method`); the
+/// [`compare`] of the render of an intersection method (`--method`); the
 /// default method goes through the renderer proper, with automatic acceleration.
 pub fn compare_method(scene: &Scene, camera: &Camera, method: Method) -> (Report, Frame<f64>) {
     match method {
         Method::Default => compare_with(scene, camera, Accel::Auto),
-        m => compare_frame(scene, camera, &lab_frame(m, scene, camera)),
+        m => compare_frame(scene, camera, &f32_depth(m.prepare(scene, camera).render())),
     }
 }
 
@@ -205,75 +200,4 @@ pub fn marked_render(oracle: &Frame<f64>, mark: impl Fn(usize) -> Option<[u8; 3]
         }
     }
     rgb
-}
-
-/// The diff image of `compare -o`.
-fn diff_image(report: &Report, oracle: &Frame<f64>) -> Vec<u8> {
-    marked_render(oracle, |i| class_colour(report.class[i]))
-}
-
-/// Runs the compare command: prints the report, writes the diff image, fails past tolerance.
-pub fn compare_command(s: &CompareSettings) -> Result<()> {
-    output::install_interrupt_cleanup();
-    if let Some(out) = &s.output {
-        output::image_format(out)?;
-        if output::same_file(out, &s.view.input) {
-            return Err(Error::usage(format!(
-                "--output {}: is the input scene",
-                out.display()
-            )));
-        }
-    }
-    let (scene, camera) = load_view(&s.view)?;
-    let method = s.view.method;
-    let (report, oracle) = pool(s.view.threads)?.install(|| match method {
-        Method::Default => compare_with(&scene, &camera, s.view.accel),
-        m => compare_method(&scene, &camera, m),
-    });
-    let r = &report;
-    let ppm = |n: usize| n as f64 * 1e6 / r.pixels.max(1) as f64;
-    println!("scene       {}", s.view.input.display());
-    println!(
-        "method      {} against the f64 scalar oracle",
-        method.name()
-    );
-    println!(
-        "pixels      {} ({}x{})",
-        r.pixels, camera.width, camera.height
-    );
-    println!(
-        "mismatches  {} ({:.1} ppm)",
-        r.mismatches,
-        ppm(r.mismatches)
-    );
-    println!(
-        "  ties      {} (f64 distances within {TIE_REL:e} relative)",
-        r.ties
-    );
-    println!(
-        "  edge band {} (ray within {EDGE_BAND:.2e} rad of a boundary)",
-        r.edges
-    );
-    println!(
-        "  unexcused {} ({:.1} ppm; allowed {} ppm)",
-        r.unexcused,
-        r.unexcused_ppm(),
-        s.max_mismatch_ppm
-    );
-    println!(
-        "depth rel   max {:.3e}, p99 {:.3e} over {} same-id hits",
-        r.depth_rel_max, r.depth_rel_p99, r.same_hits
-    );
-    if let Some(out) = &s.output {
-        output::write_image(out, camera.width, camera.height, &diff_image(r, &oracle))?;
-    }
-    if r.unexcused_ppm() > s.max_mismatch_ppm {
-        return Err(Error::Failed(format!(
-            "{} unexcused id mismatches ({:.1} ppm) exceed --max-mismatch-ppm {}",
-            r.unexcused,
-            r.unexcused_ppm(),
-            s.max_mismatch_ppm
-        )));
-    }
-    Ok(())
 }

@@ -359,10 +359,16 @@ fn statement(kw: &str, v: &[DVec3]) -> String {
     format!("{kw} {}", nums.join(" "))
 }
 
+/// The geometric rules are scale-free, so the same shape at every scale must get the same
+/// verdict. The eye moves with the scale (5 shape-sizes away), so that the f32 range rules that
+/// `parse_scene` applies too (a primitive must subtend at least 1e-12 rad from the eye) see the
+/// same view at every scale.
 fn check_shape(kw: &str, v: &[DVec3], expect: Result<(), &str>) {
+    let size = v.iter().map(|p| p.abs().max_element()).fold(0.0, f64::max);
     for scale in [1.0, 1e6, 1e-6, 1e12, 1e-12] {
         let v: Vec<DVec3> = v.iter().map(|p| *p * scale).collect();
-        let text = with_cam(&statement(kw, &v));
+        let cam = format!("camera eye 0 0 {:e} look 0 0 0 up 0 1 0\n", 5.0 * size * scale);
+        let text = format!("{cam}{}\n", statement(kw, &v));
         match expect {
             Ok(()) => assert_eq!(ok(&text).shapes.len(), 1),
             Err(word) => drop(rejected(&text, "scene.sc:2: ", &[kw, word])),

@@ -12,10 +12,10 @@
 //! miss everything: 4 primitives 9.3 -> 6.3 ms, scene1 (10) 18.8 -> 11.3 ms, scene2 (64) 42.6 ->
 //! 13.2 ms.
 
-pub mod build;
-pub mod bvh;
+pub(crate) mod build;
+pub(crate) mod bvh;
 
-pub use bvh::Bvh;
+pub(crate) use bvh::Bvh;
 
 /// From this many primitives on, `auto` builds a BVH.
 pub const AUTO_BVH_MIN: usize = 2;

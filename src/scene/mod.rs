@@ -11,7 +11,25 @@ pub mod validate;
 use glam::DVec3;
 use std::path::PathBuf;
 
-pub use parse::{load_scene, parse_scene};
+use crate::error::Result;
+use std::path::Path;
+
+/// Reads, parses and validates a scene file, meshes included: every rule of the format
+/// (README "Scene format") and the f32 range check of `validate::f32_range`, so a scene this
+/// accepts is one the command line renders. Errors name the file, line and column.
+pub fn load_scene(path: &Path) -> Result<Scene> {
+    let scene = parse::load_scene(path)?;
+    validate::f32_range(&scene)?;
+    Ok(scene)
+}
+
+/// [`load_scene`] for scene text in memory; `file` names the scene in messages, and `mesh`
+/// paths are relative to its folder.
+pub fn parse_scene(text: &str, file: &Path) -> Result<Scene> {
+    let scene = parse::parse_scene(text, file)?;
+    validate::f32_range(&scene)?;
+    Ok(scene)
+}
 
 /// The `camera` statement, unvalidated values as written (validated by `validate::camera`).
 #[derive(Debug, Clone, Copy, PartialEq)]

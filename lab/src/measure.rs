@@ -20,16 +20,18 @@
 //! percentile, max. Throughput: primary rays per second on one thread, best of repeated
 //! renders (at least 2, about 0.3 s in all), setup excluded.
 
-use super::kits::{LabFrame, Oracle};
-use super::{LabScene, Method, Render};
-use crate::compare::{EDGE_BAND, TIE_REL, hit_with_slack};
-use crate::real::V3;
-use crate::scene::Shape;
+use super::LabFrame;
+use super::LabScene;
 use glam::DVec3;
+use lanecast::compare::{EDGE_BAND, TIE_REL, hit_with_slack};
+use lanecast::real::V3;
+use lanecast::render::kits::Oracle;
+use lanecast::render::method::{Method, MethodRender};
+use lanecast::scene::Shape;
 use std::time::Instant;
 
 /// Class of a pixel (low two bits) and flags.
-pub use crate::compare::{EDGE, TIE, UNEXCUSED};
+pub use lanecast::compare::{EDGE, TIE, UNEXCUSED};
 pub const HOLE: u8 = 4;
 pub const FALSE_HIT: u8 = 8;
 
@@ -72,7 +74,7 @@ pub struct SceneResult {
 }
 
 /// Renders with `r` repeatedly: the first frame and the best rays/s.
-pub fn time_render(r: &dyn Render) -> (LabFrame, f64) {
+pub fn time_render(r: &dyn MethodRender) -> (LabFrame, f64) {
     let start = Instant::now();
     let frame = r.render();
     let mut best = start.elapsed().as_secs_f64();

@@ -1,6 +1,6 @@
 //! The accuracy lab: `cargo bench --bench lab` runs every intersection method on the stress
 //! scenes and the seed scenes against the f64 oracle and writes docs/lab/ (chart, table, error
-//! images). Arguments after `--` go to `lanecast::lab::lab_main` (`--only SCENE`,
+//! images). Arguments after `--` go to `lanecast_lab::lab_main` (`--only SCENE`,
 //! `--method NAME`, `--out DIR`).
 //!
 //! `cargo bench` passes `--bench`; `cargo test --all-targets` runs this target without it, and
@@ -12,7 +12,7 @@ fn main() {
         eprintln!("lab: not run (no --bench: start it with `cargo bench --bench lab`)");
         return;
     }
-    if let Err(e) = lanecast::lab::lab_main(args) {
+    if let Err(e) = lanecast_lab::lab_main(args) {
         eprintln!("lab: error: {e}");
         std::process::exit(1);
     }

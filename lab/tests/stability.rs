@@ -5,6 +5,7 @@
 //! 1-lane form lane by lane (masked lanes unchanged), by proptest.
 
 use glam::DVec3;
+use lanecast::Method;
 use lanecast::camera::Camera;
 use lanecast::kernel::methods::mt::{MtK, mt_x1, mt_x8};
 use lanecast::kernel::methods::plane::{PlaneK, plane_x1, plane_x8};
@@ -15,13 +16,13 @@ use lanecast::kernel::methods::world;
 use lanecast::kernel::polygon::{QuadK, TriangleK, polygon_x1, polygon_x8};
 use lanecast::kernel::sphere::{SphereK, sphere_x1, sphere_x8};
 use lanecast::kernel::{Hit, Hit8};
-use lanecast::lab::kits::{
+use lanecast::real::V3;
+use lanecast::render::kits::{
     EPlane, EPlaneWorld, Kit, Kit64, Mt, Naive, Oracle, Plane, PolyFamily, Stable, StableWorld,
     Watertight,
 };
-use lanecast::lab::measure::{Row, accuracy, method_frame, oracle_frame};
-use lanecast::lab::{LabScene, Method};
-use lanecast::real::V3;
+use lanecast_lab::LabScene;
+use lanecast_lab::measure::{Row, accuracy, method_frame, oracle_frame};
 use proptest::prelude::*;
 use std::path::Path;
 use wide::{f32x8, f64x4};
@@ -29,7 +30,8 @@ use wide::{f32x8, f64x4};
 const U: f64 = f32::EPSILON as f64 / 2.0;
 
 fn stress(name: &str) -> LabScene {
-    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("scenes/stress/{name}.sc"));
+    // The stress scenes are the workspace root's (`scenes/stress/`), beside this crate.
+    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("../scenes/stress/{name}.sc"));
     LabScene::load(&p, true).unwrap()
 }
 
@@ -251,7 +253,7 @@ fn packet_renders_equal_scalar_renders_with_border_lanes() {
         let mut s = stress(n);
         let fov = s.scene.camera.fov_deg.unwrap_or(60.0);
         s.camera = Camera::new(&s.scene.camera, fov, 37, 11);
-        fn same<S: lanecast::lab::kits::SphereFamily, P: PolyFamily>(s: &LabScene) {
+        fn same<S: lanecast::render::kits::SphereFamily, P: PolyFamily>(s: &LabScene) {
             let k = Kit::<S, P>::new(&s.scene, &s.camera);
             let (a, b) = (k.render_x8(), k.render_x1());
             assert_eq!(a.ids, b.ids);

@@ -8,6 +8,7 @@
 //! [`Kit::render_x1`] one ray at a time in f32 with the same method. [`Kit64`] is the f64x4
 //! packet form of the default methods, [`Oracle`] the f64 scalar oracle.
 
+use super::Frame;
 use crate::camera::{Camera, RayTables};
 use crate::kernel::methods::mt::{MtK, mt_x1, mt_x8};
 use crate::kernel::methods::plane::{PlaneK, plane_x1, plane_x8};
@@ -30,9 +31,6 @@ use wide::{f32x8, f64x4};
 /// Pixel block of one packet, as in the main renderer: 4 wide, 2 high.
 pub const BW: usize = 4;
 pub const BH: usize = LANES / BW;
-
-/// Per-pixel results of a lab render: the renderer's frame, depth kept in f64.
-pub type LabFrame = crate::render::Frame<f64>;
 
 /// A sphere method: constants and its 1- and 8-lane forms.
 pub trait SphereFamily {
@@ -295,7 +293,7 @@ pub struct Kit<S: SphereFamily, P: PolyFamily> {
     pub tables: RayTables<f32>,
     pub width: usize,
     pub height: usize,
-    _m: PhantomData<(S, P)>,
+    _m: PhantomData<fn() -> (S, P)>,
 }
 
 impl<S: SphereFamily, P: PolyFamily> Kit<S, P> {
@@ -378,9 +376,9 @@ impl<S: SphereFamily, P: PolyFamily> Kit<S, P> {
     }
 
     /// The image in 4x2 packets, on the calling thread.
-    pub fn render_x8(&self) -> LabFrame {
+    pub fn render_x8(&self) -> Frame<f64> {
         let (w, h) = (self.width, self.height);
-        let mut f = LabFrame::new(w, h, f64::INFINITY);
+        let mut f = Frame::new(w, h, f64::INFINITY);
         for by in (0..h).step_by(BH) {
             for bx in (0..w).step_by(BW) {
                 let (d, active) = block_rays::<BW>(&self.tables, bx, by, w, h);
@@ -400,9 +398,9 @@ impl<S: SphereFamily, P: PolyFamily> Kit<S, P> {
     }
 
     /// The image one ray at a time (f32, same method).
-    pub fn render_x1(&self) -> LabFrame {
+    pub fn render_x1(&self) -> Frame<f64> {
         let (w, h) = (self.width, self.height);
-        let mut f = LabFrame::new(w, h, f64::INFINITY);
+        let mut f = Frame::new(w, h, f64::INFINITY);
         for y in 0..h {
             for x in 0..w {
                 let hit = self.trace_x1(self.tables.dir_x1(x, y));
@@ -460,9 +458,9 @@ impl Kit64 {
         Self::poly2(&self.prepared.quads, d, hit);
     }
 
-    pub fn render(&self) -> LabFrame {
+    pub fn render(&self) -> Frame<f64> {
         let (w, h) = (self.width, self.height);
-        let mut f = LabFrame::new(w, h, f64::INFINITY);
+        let mut f = Frame::new(w, h, f64::INFINITY);
         let t = &self.tables;
         for by in (0..h).step_by(BH) {
             for bx in (0..w).step_by(BW) {
@@ -517,9 +515,9 @@ impl Oracle {
         trace_x1(&self.prepared, d)
     }
 
-    pub fn render(&self) -> LabFrame {
+    pub fn render(&self) -> Frame<f64> {
         let (w, h) = (self.width, self.height);
-        let mut f = LabFrame::new(w, h, f64::INFINITY);
+        let mut f = Frame::new(w, h, f64::INFINITY);
         for y in 0..h {
             for x in 0..w {
                 let hit = self.trace(self.tables.dir_x1(x, y));

@@ -2,11 +2,12 @@
 //! `speed-vs-accuracy.svg`/`.png` (plotters: SVG backend, and the bitmap backend drawing into
 //! a buffer that the crate's own `image` dependency encodes as PNG), and `err-*.png` images.
 
+use super::LabScene;
 use super::measure::{FALSE_HIT, HOLE, Row, SceneResult};
-use super::{LabScene, Method};
-use crate::compare::{class_colour, marked_render};
-use crate::error::{Error, Result};
-use crate::output;
+use lanecast::Method;
+use lanecast::compare::{class_colour, marked_render};
+use lanecast::error::{Error, Result};
+use lanecast::output;
 use plotters::prelude::*;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -376,7 +377,7 @@ pub fn chart(out: &Path, sums: &[Summary]) -> Result<()> {
 
 /// The error image: the oracle's render at a third of its brightness, mismatches marked: tie
 /// yellow, edge band cyan, unexcused red, hole magenta, false hit white.
-pub fn error_image(oracle: &super::kits::LabFrame, row: &Row) -> Vec<u8> {
+pub fn error_image(oracle: &super::LabFrame, row: &Row) -> Vec<u8> {
     marked_render(oracle, |i| {
         let c = row.class[i];
         if c & FALSE_HIT != 0 {

@@ -1,133 +1,29 @@
-//! The accuracy lab: every intersection method (`kernel::methods`, plus the defaults) on the
-//! stress scenes (`scenes/stress/`) and the seed scenes, measured against the f64 scalar
-//! oracle, with throughput on one thread; writes a chart, a table and error images to
-//! `docs/lab/`. Run it with `cargo bench --bench lab` (see [`lab_main`]).
+//! The accuracy lab: every intersection method (`lanecast::kernel::methods`, plus the
+//! defaults) on the stress scenes (`scenes/stress/`) and the seed scenes, measured against the
+//! f64 scalar oracle, with throughput on one thread; writes a chart, a table and error images
+//! to `docs/lab/`. Run it with `cargo bench --bench lab` (see [`lab_main`]).
 //!
-//! - `kits.rs`: brute-force drivers per method (8-lane packets, 1-lane f32, f64x4, oracle);
+//! The lab is its own crate on top of lanecast: it uses the library's public API (scenes,
+//! cameras, the methods' brute-force drivers, `compare`'s mismatch classes) and nothing in
+//! lanecast imports it, so the `lanecast` binary never links the chart's plotting crate.
+//!
 //! - `measure.rs`: mismatches (ties, edge band, unexcused), holes, false hits, depth error,
 //!   throughput;
 //! - `report.rs`: the Markdown table, the chart (plotters), the error images.
 
-pub mod kits;
 pub mod measure;
 pub mod report;
 
-use crate::camera::Camera;
-use crate::error::{Error, Result};
-use crate::scene::{Scene, load_scene};
-use kits::{
-    EPlane, EPlaneWorld, Kit, Kit64, LabFrame, Mt, Naive, Oracle, Plane, Stable, StableWorld,
-    Watertight,
-};
+use lanecast::camera::Camera;
+use lanecast::scene::{Scene, load_scene};
+use lanecast::{Error, Method, Result};
 use std::path::{Path, PathBuf};
+
+/// Per-pixel results of a lab render: the renderer's frame, depth kept in f64.
+pub type LabFrame = lanecast::Frame<f64>;
 
 /// Size of the stress scenes unless their `# lab:` line says otherwise; also the seed scenes'.
 pub const DEFAULT_SIZE: (u32, u32) = (320, 240);
-
-/// One method as a point on the chart: a triangle/quad method, a sphere method, a precision.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Method {
-    /// The default: edge planes + stable sphere, f32, eye-relative f64 setup.
-    Default,
-    /// Möller–Trumbore triangles (+ stable spheres).
-    Mt,
-    /// Woop–Benthin–Wald watertight triangles (+ stable spheres).
-    Watertight,
-    /// The original assignment's plane + determinants (+ stable spheres).
-    Plane,
-    /// Textbook sphere quadratic (+ edge-plane polygons).
-    Naive,
-    /// The default methods with the classic f32 world-space setup.
-    WorldF32,
-    /// The default methods in f64x4 packets.
-    F64x4,
-}
-
-impl Method {
-    pub const ALL: [Method; 7] = [
-        Method::Default,
-        Method::Mt,
-        Method::Watertight,
-        Method::Plane,
-        Method::Naive,
-        Method::WorldF32,
-        Method::F64x4,
-    ];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Method::Default => "eplane+stable",
-            Method::Mt => "mt",
-            Method::Watertight => "watertight",
-            Method::Plane => "plane",
-            Method::Naive => "naive",
-            Method::WorldF32 => "world-f32",
-            Method::F64x4 => "f64x4",
-        }
-    }
-
-    pub fn describe(self) -> &'static str {
-        match self {
-            Method::Default => {
-                "default: edge planes (triangles, quads) + stable sphere, f32x8, eye-relative f64 setup"
-            }
-            Method::Mt => {
-                "Möller–Trumbore triangles, quads as 2 triangles (+ stable spheres), f32x8"
-            }
-            Method::Watertight => {
-                "Woop–Benthin–Wald watertight triangles, quads as 2 triangles (+ stable spheres), f32x8"
-            }
-            Method::Plane => {
-                "plane hit + edge determinants, quads as 2 triangles (+ stable spheres), f32x8"
-            }
-            Method::Naive => "textbook quadratic spheres (+ edge-plane polygons), f32x8",
-            Method::WorldF32 => {
-                "default methods, constants computed in f32 from f32 world coordinates"
-            }
-            Method::F64x4 => "default methods in f64x4 lanes, two per 4x2 packet",
-        }
-    }
-
-    pub fn parse(s: &str) -> Option<Method> {
-        Method::ALL.into_iter().find(|m| m.name() == s)
-    }
-
-    /// Prepares the method for a scene: constants and ray tables (the setup phase).
-    pub fn prepare(self, scene: &Scene, camera: &Camera) -> Box<dyn Render> {
-        match self {
-            Method::Default => Box::new(Kit::<Stable, EPlane>::new(scene, camera)),
-            Method::Mt => Box::new(Kit::<Stable, Mt>::new(scene, camera)),
-            Method::Watertight => Box::new(Kit::<Stable, Watertight>::new(scene, camera)),
-            Method::Plane => Box::new(Kit::<Stable, Plane>::new(scene, camera)),
-            Method::Naive => Box::new(Kit::<Naive, EPlane>::new(scene, camera)),
-            Method::WorldF32 => Box::new(Kit::<StableWorld, EPlaneWorld>::new(scene, camera)),
-            Method::F64x4 => Box::new(Kit64::new(scene, camera)),
-        }
-    }
-}
-
-/// A prepared method: renders the whole image on the calling thread.
-pub trait Render {
-    fn render(&self) -> LabFrame;
-}
-
-impl<S: kits::SphereFamily, P: kits::PolyFamily> Render for Kit<S, P> {
-    fn render(&self) -> LabFrame {
-        self.render_x8()
-    }
-}
-
-impl Render for Kit64 {
-    fn render(&self) -> LabFrame {
-        Kit64::render(self)
-    }
-}
-
-impl Render for Oracle {
-    fn render(&self) -> LabFrame {
-        Oracle::render(self)
-    }
-}
 
 /// A scene as the lab uses it: the parsed scene, its camera at the lab's size, and which
 /// primitives form closed surfaces (where a miss is a hole), from the file's `# lab:` lines:
@@ -220,7 +116,11 @@ pub fn load_all(root: &Path) -> Result<Vec<LabScene>> {
 /// `speed-vs-accuracy.svg`/`.png`, `table.md` and `err-*.png`, and prints one line per scene
 /// and method to stderr.
 pub fn lab_main(args: impl IntoIterator<Item = String>) -> Result<()> {
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    // The lab crate sits in `lab/` beside the product's `src/`; scenes and docs are the root's.
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("lab/ has a parent")
+        .to_path_buf();
     let mut out = root.join("docs/lab");
     let mut only: Vec<String> = Vec::new();
     let mut methods: Vec<Method> = Vec::new();

@@ -1,22 +1,16 @@
 //! The render command, phase by phase: parse, setup, render, shade, write.
 
-use crate::accel::Accel;
-use crate::camera::Camera;
-use crate::cli::{KernelArg, RenderSettings, ViewSettings};
+use super::{load_view, pool};
+use crate::cli::{KernelArg, RenderSettings};
 use crate::error::{Error, Result};
-use crate::lab::Method;
 use crate::limits::{BYTES_PER_PIXEL, MAX_PIXELS};
 use crate::output;
 use crate::progress;
-use crate::render::{Kernel, Setup, f32_depth, strip_count};
-use crate::scene::{Scene, load_scene};
+use crate::render::{Kernel, Method, Options, Renderer};
 use crate::shade::shade;
 use crate::stats::{Stats, scene_name, secs};
 use std::path::PathBuf;
 use std::time::Instant;
-
-/// Field of view when neither the command line nor the scene gives one.
-pub const DEFAULT_FOV: f64 = 60.0;
 
 impl From<KernelArg> for Kernel {
     fn from(k: KernelArg) -> Kernel {
@@ -26,27 +20,6 @@ impl From<KernelArg> for Kernel {
             KernelArg::ScalarF32 => Kernel::ScalarF32,
         }
     }
-}
-
-/// Loads the scene and makes its camera for the requested view.
-pub fn load_view(v: &ViewSettings) -> Result<(Scene, Camera)> {
-    let scene = load_scene(&v.input)?;
-    for w in &scene.warnings {
-        eprintln!("lanecast: warning: {w}");
-    }
-    // hardening (issue 5): reject primitives the f32 kernels cannot represent from this eye.
-    crate::scene::validate::f32_range(&scene)?;
-    let fov = v.fov.or(scene.camera.fov_deg).unwrap_or(DEFAULT_FOV);
-    let camera = Camera::new(&scene.camera, fov, v.width, v.height);
-    Ok((scene, camera))
-}
-
-/// A rayon pool of the requested size (all cores when `None`).
-pub fn pool(threads: Option<usize>) -> Result<rayon::ThreadPool> {
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(threads.unwrap_or(0))
-        .build()
-        .map_err(|e| Error::Failed(format!("cannot start worker threads: {e}")))
 }
 
 /// Refuses, before any work, outputs that would overwrite the input or each other, and image
@@ -89,7 +62,7 @@ fn check_memory(width: u32, height: u32) -> Result<()> {
 }
 
 /// Runs the render command.
-pub fn render_command(s: &RenderSettings) -> Result<()> {
+pub(crate) fn render_command(s: &RenderSettings) -> Result<()> {
     // hardening (issue 5): Ctrl-C / SIGTERM remove pending temporary files, exit 130.
     output::install_interrupt_cleanup();
     check_outputs(s)?;
@@ -112,23 +85,26 @@ pub fn render_command(s: &RenderSettings) -> Result<()> {
     lap("parse", &mut stats, &mut clock);
 
     let pool = pool(s.view.threads)?;
-    // The default method runs in the renderer proper; the others in the lab's driver.
     let method = s.view.method;
-    let (setup, lab) = if method == Method::Default {
-        let setup = Setup::with_accel(s.kernel.into(), s.view.accel, &scene, &camera);
-        stats.accel = setup.accel().name();
-        stats.threads = pool.current_num_threads();
-        (Some(setup), None)
-    } else if s.kernel != KernelArg::Simd {
+    if method != Method::Default && s.kernel != KernelArg::Simd {
         return Err(Error::usage(format!(
             "--method {}: methods apply to the simd kernel (--kernel {} is the oracle's own)",
             method.name(),
             s.kernel.name()
         )));
+    }
+    let options = Options {
+        kernel: s.kernel.into(),
+        accel: s.view.accel,
+        method,
+    };
+    let renderer = Renderer::new(&scene, &camera, &options)?;
+    stats.accel = renderer.accel().name();
+    // The default method renders on the pool; the other methods on one thread.
+    stats.threads = if renderer.is_parallel() {
+        pool.current_num_threads()
     } else {
-        stats.accel = Accel::None.name();
-        stats.threads = 1;
-        (None, Some(method.prepare(&scene, &camera)))
+        1
     };
     stats.method = method.name();
     lap("setup", &mut stats, &mut clock);
@@ -137,13 +113,9 @@ pub fn render_command(s: &RenderSettings) -> Result<()> {
     let mut frame = None;
     for _ in 0..s.repeat {
         let start = Instant::now();
-        frame = Some(match (&setup, &lab) {
-            (Some(setup), _) => progress::with_progress(strip_count(h), |done| {
-                pool.install(|| setup.render_counting(w, h, Some(done)))
-            }),
-            (_, Some(lab)) => f32_depth(lab.render()),
-            _ => unreachable!("one of the two is prepared"),
-        });
+        frame = Some(progress::with_progress(renderer.work_units(), |done| {
+            pool.install(|| renderer.render_counting(Some(done)))
+        }));
         stats.renders.push(secs(start.elapsed()));
     }
     let frame = frame.expect("--repeat is at least 1");

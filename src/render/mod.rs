@@ -2,6 +2,17 @@
 //! each strip traced block by block (packet kernel) or pixel by pixel (scalar kernels).
 //! Every pixel's result depends only on the pixel, so output is bit-identical at any thread
 //! count; the caller chooses the count by running inside a rayon pool.
+//!
+//! [`Renderer`] is the entry point: [`Options`] (kernel, acceleration, intersection method)
+//! and a scene seen by a camera make a prepared renderer (the setup phase), whose
+//! [`Renderer::render`] gives a [`Frame`] of ids and depths. The pieces below it
+//! ([`Setup`], [`PacketScene`], [`render_packet_blocks`]) are public for benchmarks and
+//! experiments that time one kernel alone.
+
+pub mod kits;
+pub mod method;
+
+pub use method::Method;
 
 use crate::accel::{Accel, Bvh, bvh::trace_bvh_x8};
 use crate::camera::RayTables;
@@ -43,8 +54,8 @@ impl<D: Copy> Frame<D> {
 /// acceleration is `bvh` (the stores are then in the BVH's leaf order).
 #[derive(Debug, Clone)]
 pub struct PacketScene {
-    pub packed: Packed,
-    pub bvh: Option<Bvh>,
+    packed: Packed,
+    bvh: Option<Bvh>,
 }
 
 impl PacketScene {
@@ -182,17 +193,6 @@ fn render_scalar_counting<T: Real>(
     frame
 }
 
-/// A render by one of the lab's intersection methods (`--method` other than the default, or
-/// `--precision f64`): the lab's brute-force packet driver on the calling thread, depth rounded
-/// to f32 for output.
-pub fn lab_frame(
-    method: crate::lab::Method,
-    scene: &crate::scene::Scene,
-    camera: &crate::camera::Camera,
-) -> Frame<f32> {
-    f32_depth(method.prepare(scene, camera).render())
-}
-
 /// An f64 frame (the oracle's, a lab method's) with its depths rounded once to f32, the
 /// precision of every output buffer.
 pub fn f32_depth(f: Frame<f64>) -> Frame<f32> {
@@ -281,6 +281,108 @@ impl Setup {
             Setup::ScalarF64(p, t) => {
                 f32_depth(render_scalar_counting(p, t, width, height, progress))
             }
+        }
+    }
+}
+
+/// How to render: which kernel, which acceleration, which intersection method.
+/// `Options::default()` is what the command line does with no flags: 8-lane packets, automatic
+/// acceleration, the default method.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Options {
+    /// The kernel (`--kernel`).
+    pub kernel: Kernel,
+    /// The packet kernel's acceleration (`--accel`); the scalar kernels test every primitive.
+    pub accel: Accel,
+    /// The intersection method (`--method`, `--precision`); methods other than
+    /// [`Method::Default`] run with the packet kernel only.
+    pub method: Method,
+}
+
+impl Default for Options {
+    fn default() -> Options {
+        Options {
+            kernel: Kernel::Packet,
+            accel: Accel::Auto,
+            method: Method::Default,
+        }
+    }
+}
+
+/// A scene prepared for one camera and one set of [`Options`]: every per-primitive constant
+/// and acceleration structure is built, so [`Renderer::render`] only traces rays.
+pub struct Renderer {
+    width: usize,
+    height: usize,
+    job: Job,
+}
+
+enum Job {
+    Setup(Box<Setup>),
+    Method(Box<dyn method::MethodRender>),
+}
+
+impl Renderer {
+    /// Prepares `scene` seen by `camera` (the setup phase). Fails when the options contradict
+    /// each other: a method other than the default with a scalar kernel.
+    pub fn new(
+        scene: &crate::scene::Scene,
+        camera: &crate::camera::Camera,
+        options: &Options,
+    ) -> crate::Result<Renderer> {
+        let job = match (options.method, options.kernel) {
+            (Method::Default, kernel) => Job::Setup(Box::new(Setup::with_accel(
+                kernel,
+                options.accel,
+                scene,
+                camera,
+            ))),
+            (m, Kernel::Packet) => Job::Method(m.prepare(scene, camera)),
+            (m, _) => {
+                return Err(crate::Error::usage(format!(
+                    "method {} applies to the packet kernel only",
+                    m.name()
+                )));
+            }
+        };
+        Ok(Renderer {
+            width: camera.width as usize,
+            height: camera.height as usize,
+            job,
+        })
+    }
+
+    /// The acceleration in use: `none` for the scalar kernels and the brute-force methods.
+    pub fn accel(&self) -> Accel {
+        match &self.job {
+            Job::Setup(s) => s.accel(),
+            Job::Method(_) => Accel::None,
+        }
+    }
+
+    /// Whether the render spreads over the current rayon pool's threads (the default method);
+    /// the other methods trace on the calling thread.
+    pub fn is_parallel(&self) -> bool {
+        matches!(self.job, Job::Setup(_))
+    }
+
+    /// Renders the frame in the current rayon pool. Depth is reported in f32 by every kernel
+    /// (f64 distances rounded once).
+    pub fn render(&self) -> Frame<f32> {
+        self.render_counting(None)
+    }
+
+    /// How many units of work [`Renderer::render_counting`] counts (strips of rows).
+    pub fn work_units(&self) -> usize {
+        strip_count(self.height)
+    }
+
+    /// [`Renderer::render`], adding 1 to `progress` per finished strip of rows (methods other
+    /// than the default count nothing).
+    pub fn render_counting(&self, progress: Option<&AtomicUsize>) -> Frame<f32> {
+        match &self.job {
+            Job::Setup(s) => s.render_counting(self.width, self.height, progress),
+            Job::Method(m) => f32_depth(m.render()),
         }
     }
 }

@@ -1,0 +1,119 @@
+//! Intersection methods other than the default, selectable with `--method` and `--precision`:
+//! each names a pair of kernels (`kernel::methods`) and [`Method::prepare`] builds its
+//! brute-force driver ([`kits`](super::kits)): every ray against every primitive, on the calling
+//! thread. They exist to be compared (by `lanecast compare` and the accuracy lab), not to be
+//! fast; the default method runs in the renderer proper ([`super::Setup`]).
+
+use super::Frame;
+use super::kits::{
+    EPlane, EPlaneWorld, Kit, Kit64, Mt, Naive, Oracle, Plane, PolyFamily, SphereFamily, Stable,
+    StableWorld, Watertight,
+};
+use crate::camera::Camera;
+use crate::scene::Scene;
+
+/// One method as a point on the chart: a triangle/quad method, a sphere method, a precision.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Method {
+    /// The default: edge planes + stable sphere, f32, eye-relative f64 setup.
+    Default,
+    /// Möller–Trumbore triangles (+ stable spheres).
+    Mt,
+    /// Woop–Benthin–Wald watertight triangles (+ stable spheres).
+    Watertight,
+    /// The original assignment's plane + determinants (+ stable spheres).
+    Plane,
+    /// Textbook sphere quadratic (+ edge-plane polygons).
+    Naive,
+    /// The default methods with the classic f32 world-space setup.
+    WorldF32,
+    /// The default methods in f64x4 packets.
+    F64x4,
+}
+
+impl Method {
+    pub const ALL: [Method; 7] = [
+        Method::Default,
+        Method::Mt,
+        Method::Watertight,
+        Method::Plane,
+        Method::Naive,
+        Method::WorldF32,
+        Method::F64x4,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Default => "eplane+stable",
+            Method::Mt => "mt",
+            Method::Watertight => "watertight",
+            Method::Plane => "plane",
+            Method::Naive => "naive",
+            Method::WorldF32 => "world-f32",
+            Method::F64x4 => "f64x4",
+        }
+    }
+
+    pub fn describe(self) -> &'static str {
+        match self {
+            Method::Default => {
+                "default: edge planes (triangles, quads) + stable sphere, f32x8, eye-relative f64 setup"
+            }
+            Method::Mt => {
+                "Möller–Trumbore triangles, quads as 2 triangles (+ stable spheres), f32x8"
+            }
+            Method::Watertight => {
+                "Woop–Benthin–Wald watertight triangles, quads as 2 triangles (+ stable spheres), f32x8"
+            }
+            Method::Plane => {
+                "plane hit + edge determinants, quads as 2 triangles (+ stable spheres), f32x8"
+            }
+            Method::Naive => "textbook quadratic spheres (+ edge-plane polygons), f32x8",
+            Method::WorldF32 => {
+                "default methods, constants computed in f32 from f32 world coordinates"
+            }
+            Method::F64x4 => "default methods in f64x4 lanes, two per 4x2 packet",
+        }
+    }
+
+    pub fn parse(s: &str) -> Option<Method> {
+        Method::ALL.into_iter().find(|m| m.name() == s)
+    }
+
+    /// Prepares the method for a scene: constants and ray tables (the setup phase).
+    pub fn prepare(self, scene: &Scene, camera: &Camera) -> Box<dyn MethodRender> {
+        match self {
+            Method::Default => Box::new(Kit::<Stable, EPlane>::new(scene, camera)),
+            Method::Mt => Box::new(Kit::<Stable, Mt>::new(scene, camera)),
+            Method::Watertight => Box::new(Kit::<Stable, Watertight>::new(scene, camera)),
+            Method::Plane => Box::new(Kit::<Stable, Plane>::new(scene, camera)),
+            Method::Naive => Box::new(Kit::<Naive, EPlane>::new(scene, camera)),
+            Method::WorldF32 => Box::new(Kit::<StableWorld, EPlaneWorld>::new(scene, camera)),
+            Method::F64x4 => Box::new(Kit64::new(scene, camera)),
+        }
+    }
+}
+
+/// A prepared method: renders the whole image on the calling thread.
+pub trait MethodRender: Send + Sync {
+    /// Renders the whole image on the calling thread, depth in f64.
+    fn render(&self) -> Frame<f64>;
+}
+
+impl<S: SphereFamily, P: PolyFamily> MethodRender for Kit<S, P> {
+    fn render(&self) -> Frame<f64> {
+        self.render_x8()
+    }
+}
+
+impl MethodRender for Kit64 {
+    fn render(&self) -> Frame<f64> {
+        Kit64::render(self)
+    }
+}
+
+impl MethodRender for Oracle {
+    fn render(&self) -> Frame<f64> {
+        Oracle::render(self)
+    }
+}

@@ -1,0 +1,41 @@
+//! The commands behind the command line, phase by phase, and the one place that prints what the
+//! library returns (warnings, reports). `render.rs` is the render command, `compare.rs` the
+//! `compare` subcommand; both go through the library API (`lanecast::Renderer`, `compare`).
+
+mod compare;
+mod render;
+
+use crate::camera::Camera;
+use crate::cli::{Command, ViewSettings};
+use crate::error::{Error, Result};
+use crate::scene::{Scene, load_scene};
+
+/// Runs a parsed command line.
+pub(crate) fn command(cmd: Command) -> Result<()> {
+    match cmd {
+        Command::Info(text) => {
+            print!("{text}");
+            Ok(())
+        }
+        Command::Render(s) => render::render_command(&s),
+        Command::Compare(s) => compare::compare_command(&s),
+    }
+}
+
+/// Loads the scene (printing its warnings) and makes its camera for the requested view.
+fn load_view(v: &ViewSettings) -> Result<(Scene, Camera)> {
+    let scene = load_scene(&v.input)?;
+    for w in &scene.warnings {
+        eprintln!("lanecast: warning: {w}");
+    }
+    let camera = Camera::for_scene(&scene, v.width, v.height, v.fov)?;
+    Ok((scene, camera))
+}
+
+/// A rayon pool of the requested size (all cores when `None`).
+fn pool(threads: Option<usize>) -> Result<rayon::ThreadPool> {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.unwrap_or(0))
+        .build()
+        .map_err(|e| Error::Failed(format!("cannot start worker threads: {e}")))
+}
