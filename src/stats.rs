@@ -86,68 +86,35 @@ impl Stats {
         out
     }
 
-    /// The `--stats` record, as JSON.
+    /// The `--stats` record, as JSON (non-finite numbers become `null`).
     pub fn json(&self) -> String {
-        let (s, t, q) = self.primitives;
-        let phases: Vec<String> = self
+        let (spheres, triangles, quads) = self.primitives;
+        let phases: serde_json::Map<String, serde_json::Value> = self
             .phases
             .iter()
-            .map(|(n, v)| format!("\"{n}\": {}", num(*v)))
+            .map(|(n, v)| (n.to_string(), (*v).into()))
             .collect();
-        let renders: Vec<String> = self.renders.iter().map(|v| num(*v)).collect();
-        let mut out = String::from("{\n");
-        let _ = writeln!(out, "  \"scene\": {},", json_str(&self.scene));
-        let _ = writeln!(
-            out,
-            "  \"width\": {}, \"height\": {},",
-            self.width, self.height
-        );
-        let _ = writeln!(
-            out,
-            "  \"primitives\": {{\"spheres\": {s}, \"triangles\": {t}, \"quads\": {q}}},"
-        );
-        let _ = writeln!(
-            out,
-            "  \"kernel\": \"{}\", \"method\": \"{}\", \"accel\": \"{}\", \"threads\": {},",
-            self.kernel, self.method, self.accel, self.threads
-        );
-        let _ = writeln!(out, "  \"simd\": {},", json_str(simd_in_use()));
-        let _ = writeln!(out, "  \"phases_s\": {{{}}},", phases.join(", "));
-        let _ = writeln!(out, "  \"renders_s\": [{}],", renders.join(", "));
-        let _ = writeln!(out, "  \"render_best_s\": {},", num(self.render_best()));
-        let _ = writeln!(out, "  \"render_median_s\": {},", num(self.render_median()));
-        let _ = writeln!(out, "  \"rays_per_s\": {},", num(self.rays_per_s()));
-        let peak = peak_rss_kib().map_or("null".to_string(), |k| (k * 1024).to_string());
-        let _ = writeln!(out, "  \"peak_rss_bytes\": {peak}");
-        out.push_str("}\n");
+        let record = serde_json::json!({
+            "scene": self.scene,
+            "width": self.width,
+            "height": self.height,
+            "primitives": {"spheres": spheres, "triangles": triangles, "quads": quads},
+            "kernel": self.kernel,
+            "method": self.method,
+            "accel": self.accel,
+            "threads": self.threads,
+            "simd": simd_in_use(),
+            "phases_s": phases,
+            "renders_s": self.renders,
+            "render_best_s": self.render_best(),
+            "render_median_s": self.render_median(),
+            "rays_per_s": self.rays_per_s(),
+            "peak_rss_bytes": peak_rss_kib().map(|k| k * 1024),
+        });
+        let mut out = serde_json::to_string_pretty(&record).expect("a JSON value always prints");
+        out.push('\n');
         out
     }
-}
-
-/// JSON number; non-finite values become null.
-fn num(v: f64) -> String {
-    if v.is_finite() {
-        format!("{v:e}")
-    } else {
-        "null".into()
-    }
-}
-
-/// JSON string literal.
-fn json_str(s: &str) -> String {
-    let mut out = String::from("\"");
-    for c in s.chars() {
-        match c {
-            '"' => out.push_str("\\\""),
-            '\\' => out.push_str("\\\\"),
-            c if (c as u32) < 0x20 => {
-                let _ = write!(out, "\\u{:04x}", c as u32);
-            }
-            c => out.push(c),
-        }
-    }
-    out.push('"');
-    out
 }
 
 /// What the packet kernel's `f32x8` compiles to in this build (fixed at compile time).

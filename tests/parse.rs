@@ -367,7 +367,10 @@ fn check_shape(kw: &str, v: &[DVec3], expect: Result<(), &str>) {
     let size = v.iter().map(|p| p.abs().max_element()).fold(0.0, f64::max);
     for scale in [1.0, 1e6, 1e-6, 1e12, 1e-12] {
         let v: Vec<DVec3> = v.iter().map(|p| *p * scale).collect();
-        let cam = format!("camera eye 0 0 {:e} look 0 0 0 up 0 1 0\n", 5.0 * size * scale);
+        let cam = format!(
+            "camera eye 0 0 {:e} look 0 0 0 up 0 1 0\n",
+            5.0 * size * scale
+        );
         let text = format!("{cam}{}\n", statement(kw, &v));
         match expect {
             Ok(()) => assert_eq!(ok(&text).shapes.len(), 1),
