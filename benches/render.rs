@@ -89,7 +89,7 @@ fn block_shape(c: &mut Criterion) {
             w,
             h,
         );
-        let packed = PacketScene::new(&scene, camera.eye, Accel::None);
+        let packed = PacketScene::new(&scene, &camera, Accel::None);
         let tables = camera.tables::<f32>(8, 2);
         let mut g = c.benchmark_group(format!("block_shape/scene{n}"));
         g.throughput(Throughput::Elements(w as u64 * h as u64));

@@ -114,7 +114,7 @@ fn bench_scene(
     g.warm_up_time(Duration::from_millis(300));
     g.measurement_time(Duration::from_secs(2));
     for &accel in accels {
-        let ps = PacketScene::new(scene, camera.eye, accel);
+        let ps = PacketScene::new(scene, camera, accel);
         g.bench_function(BenchmarkId::new(accel.name(), "t1"), |b| {
             b.iter(|| {
                 pool.install(|| black_box(render_packet(&ps, &tables, w as usize, h as usize)))

@@ -88,8 +88,8 @@ struct View {
     /// Worker threads [default: all cores].
     #[arg(long, value_name = "N")]
     threads: Option<usize>,
-    /// Packet kernel acceleration: auto (bvh from 2 primitives on), none (test every
-    /// primitive), bvh.
+    /// Packet kernel acceleration: auto (tiles from 2 primitives on), none (test every
+    /// primitive), tiles (primitives binned into screen tiles, nearest first), bvh.
     #[arg(long, value_enum, default_value = "auto")]
     accel: AccelArg,
     /// Intersection method of the simd kernel: eplane+stable (the default: edge planes through
@@ -109,6 +109,7 @@ pub enum AccelArg {
     Auto,
     None,
     Bvh,
+    Tiles,
 }
 
 impl From<AccelArg> for crate::accel::Accel {
@@ -117,6 +118,7 @@ impl From<AccelArg> for crate::accel::Accel {
             AccelArg::Auto => crate::accel::Accel::Auto,
             AccelArg::None => crate::accel::Accel::None,
             AccelArg::Bvh => crate::accel::Accel::Bvh,
+            AccelArg::Tiles => crate::accel::Accel::Tiles,
         }
     }
 }

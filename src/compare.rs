@@ -108,7 +108,7 @@ pub fn compare(scene: &Scene, camera: &Camera) -> (Report, Frame<f64>) {
 pub fn compare_with(scene: &Scene, camera: &Camera, accel: Accel) -> (Report, Frame<f64>) {
     let (w, h) = (camera.width as usize, camera.height as usize);
     let packet = render_packet(
-        &PacketScene::new(scene, camera.eye, accel),
+        &PacketScene::new(scene, camera, accel),
         &camera.tables(4, 2),
         w,
         h,

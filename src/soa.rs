@@ -11,6 +11,7 @@ use crate::kernel::sphere::SphereK;
 use crate::real::Real;
 use crate::scene::{Scene, Shape};
 use glam::DVec3;
+use rayon::prelude::*;
 
 /// One type's prepared primitives and their ids (ascending: file order).
 #[derive(Debug, Clone, PartialEq)]
@@ -137,6 +138,28 @@ impl Spheres {
         self.id.is_empty()
     }
 
+    /// Appends one sphere's constants.
+    fn push(&mut self, k: &SphereK<f32>, id: f32) {
+        self.ocx.push(k.oc[0]);
+        self.ocy.push(k.oc[1]);
+        self.ocz.push(k.oc[2]);
+        self.r2.push(k.r2);
+        self.c.push(k.c);
+        self.inside.push(k.inside);
+        self.id.push(id);
+    }
+
+    /// Appends every sphere of `other`.
+    fn append(&mut self, o: &Spheres) {
+        self.ocx.extend_from_slice(&o.ocx);
+        self.ocy.extend_from_slice(&o.ocy);
+        self.ocz.extend_from_slice(&o.ocz);
+        self.r2.extend_from_slice(&o.r2);
+        self.c.extend_from_slice(&o.c);
+        self.inside.extend_from_slice(&o.inside);
+        self.id.extend_from_slice(&o.id);
+    }
+
     /// Sphere `i`'s constants, gathered from the columns.
     #[inline(always)]
     pub fn get(&self, i: usize) -> SphereK<f32> {
@@ -160,6 +183,17 @@ pub struct Polygons<const N: usize> {
     pub id: Vec<f32>,
 }
 
+impl<const N: usize> Default for Polygons<N> {
+    fn default() -> Self {
+        Polygons {
+            n: std::array::from_fn(|_| Default::default()),
+            nrm: Default::default(),
+            p: Vec::new(),
+            id: Vec::new(),
+        }
+    }
+}
+
 impl<const N: usize> Polygons<N> {
     fn new(g: &Group<PolyK<f64, N>>) -> Polygons<N> {
         let k: Vec<PolyK<f32, N>> = g.k.iter().map(|k| k.cast()).collect();
@@ -180,6 +214,26 @@ impl<const N: usize> Polygons<N> {
         self.id.is_empty()
     }
 
+    /// Appends one polygon's constants.
+    fn push(&mut self, k: &PolyK<f32, N>, id: f32) {
+        for (col, n) in self.n.iter_mut().zip(&k.n) {
+            (0..3).for_each(|c| col[c].push(n[c]));
+        }
+        (0..3).for_each(|c| self.nrm[c].push(k.nrm[c]));
+        self.p.push(k.p);
+        self.id.push(id);
+    }
+
+    /// Appends every polygon of `other`.
+    fn append(&mut self, other: &Polygons<N>) {
+        for (col, o) in self.n.iter_mut().zip(&other.n) {
+            (0..3).for_each(|c| col[c].extend_from_slice(&o[c]));
+        }
+        (0..3).for_each(|c| self.nrm[c].extend_from_slice(&other.nrm[c]));
+        self.p.extend_from_slice(&other.p);
+        self.id.extend_from_slice(&other.id);
+    }
+
     /// Polygon `i`'s constants, gathered from the columns.
     #[inline(always)]
     pub fn get(&self, i: usize) -> PolyK<f32, N> {
@@ -192,7 +246,7 @@ impl<const N: usize> Polygons<N> {
 }
 
 /// All primitives as f32 structure-of-arrays stores, one per type.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 pub struct Packed {
     pub spheres: Spheres,
     pub triangles: Polygons<3>,
@@ -200,6 +254,49 @@ pub struct Packed {
 }
 
 impl Packed {
+    /// The stores of `scene` seen from `eye`, built straight from the shapes on all threads,
+    /// with no f64 copy kept: chunks of shapes are prepared in parallel (the same
+    /// `SphereK::new`/`PolyK` constructors and f32 rounding as [`Prepared::new`] and
+    /// [`Packed::new`], so the columns are identical), then joined in file order.
+    pub fn from_scene(scene: &Scene, eye: DVec3) -> Packed {
+        const CHUNK: usize = 1 << 14;
+        let parts: Vec<Packed> = scene
+            .shapes
+            .par_chunks(CHUNK)
+            .enumerate()
+            .map(|(c, shapes)| {
+                let mut part = Packed::default();
+                for (j, shape) in shapes.iter().enumerate() {
+                    let id = (c * CHUNK + j) as f32;
+                    match shape {
+                        Shape::Sphere { center, radius } => part
+                            .spheres
+                            .push(&SphereK::new(*center, *radius, eye).cast(), id),
+                        Shape::Triangle(v) => {
+                            if let Some(k) = TriangleK::triangle(v, eye) {
+                                part.triangles.push(&k.cast(), id)
+                            }
+                        }
+                        Shape::Quad(v) => {
+                            if let Some(k) = QuadK::quad(v, eye) {
+                                part.quads.push(&k.cast(), id)
+                            }
+                        }
+                    }
+                }
+                part
+            })
+            .collect();
+        let mut out = Packed::default();
+        for part in &parts {
+            out.spheres.append(&part.spheres);
+            out.triangles.append(&part.triangles);
+            out.quads.append(&part.quads);
+        }
+        out
+    }
+
+    /// The stores of prepared f64 constants, rounded to f32.
     pub fn new(p: &Prepared<f64>) -> Packed {
         Packed {
             spheres: Spheres::new(&p.spheres),
@@ -252,5 +349,13 @@ mod tests {
         assert_eq!(packed.triangles.get(0), f.triangles.k[0]);
         assert_eq!(packed.quads.get(0), f.quads.k[0]);
         assert_eq!(packed.quads.id, vec![2.0]);
+        // The parallel path, over several chunks, gives the same columns.
+        let mut big = scene.clone();
+        big.shapes = scene.shapes.repeat(10_000);
+        big.lines = vec![1; big.shapes.len()];
+        let direct = Packed::from_scene(&big, big.camera.eye);
+        let serial = Packed::new(&Prepared::new(&big, big.camera.eye));
+        assert_eq!(direct.triangles.len(), 10_000);
+        assert_eq!(format!("{direct:?}"), format!("{serial:?}"));
     }
 }

@@ -1,7 +1,9 @@
-//! Accelerations agree: the packet kernel with `--accel bvh` returns exactly the ids and depths
-//! of `--accel none` (the nearest-hit rule is order-independent, and the BVH's padded boxes
-//! never cull a primitive a ray hits), on the seed scenes, random scenes of every type, dense
-//! random scenes, closed meshes, and a scene far from the origin.
+//! Accelerations agree: the packet kernel with `--accel bvh` and with `--accel tiles` returns
+//! exactly the ids and depths of `--accel none` (the nearest-hit rule is order-independent, the
+//! BVH's padded boxes never cull a primitive a ray hits, and the tiles' rectangles and near
+//! bounds are conservative), on the seed scenes, random scenes of every type, dense random
+//! scenes, closed meshes, a scene far from the origin, primitives crossing the eye's plane, the
+//! eye inside a sphere, and primitives cut by the image border.
 
 mod common;
 
@@ -14,22 +16,25 @@ use lanecast::scene::{Scene, Shape};
 fn frames_equal(name: &str, scene: &Scene, w: u32, h: u32) {
     let camera = camera_of(scene, w, h);
     let tables = camera.tables::<f32>(4, 2);
-    let none = PacketScene::new(scene, camera.eye, Accel::None);
-    let bvh = PacketScene::new(scene, camera.eye, Accel::Bvh);
+    let none = PacketScene::new(scene, &camera, Accel::None);
     assert_eq!(none.accel(), Accel::None);
-    assert_eq!(bvh.accel(), Accel::Bvh);
     let a = render_packet(&none, &tables, w as usize, h as usize);
-    let b = render_packet(&bvh, &tables, w as usize, h as usize);
     let hits = a.ids.iter().filter(|&&i| i >= 0).count();
     assert!(hits > 0, "{name}: the test scene must hit something");
-    for i in 0..a.ids.len() {
-        assert_eq!(
-            (a.ids[i], a.depth[i].to_bits()),
-            (b.ids[i], b.depth[i].to_bits()),
-            "{name}: pixel ({}, {})",
-            i % w as usize,
-            i / w as usize
-        );
+    for accel in [Accel::Bvh, Accel::Tiles] {
+        let other = PacketScene::new(scene, &camera, accel);
+        assert_eq!(other.accel(), accel);
+        let b = render_packet(&other, &tables, w as usize, h as usize);
+        for i in 0..a.ids.len() {
+            assert_eq!(
+                (a.ids[i], a.depth[i].to_bits()),
+                (b.ids[i], b.depth[i].to_bits()),
+                "{name}, {}: pixel ({}, {})",
+                accel.name(),
+                i % w as usize,
+                i / w as usize
+            );
+        }
     }
 }
 
@@ -97,14 +102,66 @@ fn bvh_equals_brute_force_on_closed_meshes_and_far_scenes() {
 }
 
 #[test]
-fn auto_picks_bvh_from_the_threshold() {
+fn tiles_equal_brute_force_across_the_eye_plane_and_inside_a_sphere() {
+    let eye = DVec3::new(0.0, 0.5, 4.0);
+    let cam = spec(eye, DVec3::ZERO, DVec3::Y, 70.0);
+    let shapes = vec![
+        // a floor that runs under and behind the eye: crosses the eye's plane
+        Shape::Quad([
+            DVec3::new(-20.0, -1.0, -20.0),
+            DVec3::new(20.0, -1.0, -20.0),
+            DVec3::new(20.0, -1.0, 20.0),
+            DVec3::new(-20.0, -1.0, 20.0),
+        ]),
+        // a triangle with one vertex behind the eye
+        Shape::Triangle([
+            DVec3::new(-2.0, 1.5, -3.0),
+            DVec3::new(2.0, 1.2, -3.0),
+            DVec3::new(0.5, 2.0, 6.0),
+        ]),
+        // a sphere that reaches behind the eye's plane, off to the side
+        Shape::Sphere {
+            center: DVec3::new(3.0, 0.5, 4.5),
+            radius: 2.0,
+        },
+        // a wall entirely behind the eye (never hit)
+        Shape::Quad([
+            DVec3::new(-5.0, -5.0, 9.0),
+            DVec3::new(5.0, -5.0, 9.0),
+            DVec3::new(5.0, 5.0, 9.0),
+            DVec3::new(-5.0, 5.0, 9.0),
+        ]),
+        // small spheres cut by the image border and in the middle
+        Shape::Sphere {
+            center: DVec3::new(-2.55, 0.2, 0.0),
+            radius: 0.4,
+        },
+        Shape::Sphere {
+            center: DVec3::new(0.0, -0.3, -1.0),
+            radius: 0.5,
+        },
+    ];
+    frames_equal(
+        "eye plane",
+        &build_scene("plane.sc", cam, &shapes),
+        203,
+        117,
+    );
+    // the eye inside a big sphere, with things inside it too
+    let mut inside = shapes.clone();
+    inside.push(Shape::Sphere {
+        center: DVec3::new(0.2, 0.0, 1.0),
+        radius: 30.0,
+    });
+    frames_equal("inside", &build_scene("inside.sc", cam, &inside), 203, 117);
+}
+
+#[test]
+fn auto_picks_tiles_from_the_threshold() {
     assert_eq!(
-        Accel::Auto.resolve(lanecast::accel::AUTO_BVH_MIN - 1),
+        Accel::Auto.resolve(lanecast::accel::AUTO_MIN - 1),
         Accel::None
     );
-    assert_eq!(
-        Accel::Auto.resolve(lanecast::accel::AUTO_BVH_MIN),
-        Accel::Bvh
-    );
+    assert_eq!(Accel::Auto.resolve(lanecast::accel::AUTO_MIN), Accel::Tiles);
     assert_eq!(Accel::None.resolve(1_000_000), Accel::None);
 }

@@ -36,7 +36,7 @@ fn real_meshes_agree_with_the_oracle_with_and_without_bvh() {
         let scene = load_scene(&path).unwrap();
         assert!(scene.shapes.len() > 900, "{name}: mesh loaded");
         let camera = camera_of(&scene, 320, 240);
-        for accel in [Accel::None, Accel::Bvh] {
+        for accel in [Accel::None, Accel::Bvh, Accel::Tiles] {
             let (report, oracle) = compare_with(&scene, &camera, accel);
             assert_eq!(report.unexcused, 0, "{name} {accel:?}: {report:?}");
             let hits = oracle.ids.iter().filter(|&&i| i >= 0).count();

@@ -14,7 +14,8 @@ pub mod method;
 
 pub use method::Method;
 
-use crate::accel::{Accel, Bvh, bvh::trace_bvh_x8};
+use crate::accel::tiles::{TILE_H, TILE_W};
+use crate::accel::{Accel, Bvh, Tiles, bvh::trace_bvh_x8};
 use crate::camera::RayTables;
 use crate::kernel::packet::{BLOCK_H, BLOCK_W, block_rays, trace_x8};
 use crate::kernel::scalar::trace_x1;
@@ -25,8 +26,9 @@ use rayon::prelude::*;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use wide::f32x8;
 
-/// Image rows per strip: the unit of work a thread takes. A multiple of `BLOCK_H`.
-pub const STRIP_ROWS: usize = 8;
+/// Image rows per strip: the unit of work a thread takes. A multiple of `BLOCK_H`, and one row
+/// of `accel::tiles`' tiles.
+pub const STRIP_ROWS: usize = TILE_H;
 
 /// Per-pixel results, row 0 at the top: primitive id (-1 for background) and hit distance
 /// along the unit ray (+inf for background).
@@ -56,42 +58,64 @@ impl<D: Copy> Frame<D> {
 pub struct PacketScene {
     packed: Packed,
     bvh: Option<Bvh>,
+    tiles: Option<Tiles>,
 }
 
 impl PacketScene {
-    /// Prepares `scene` seen from `eye` with acceleration `accel` (`auto` resolved by size).
-    pub fn new(scene: &crate::scene::Scene, eye: glam::DVec3, accel: Accel) -> PacketScene {
-        let prepared = Prepared::new(scene, eye);
+    /// Prepares `scene` seen by `camera` with acceleration `accel` (`auto` resolved by size).
+    pub fn new(
+        scene: &crate::scene::Scene,
+        camera: &crate::camera::Camera,
+        accel: Accel,
+    ) -> PacketScene {
+        let eye = camera.eye;
         match accel.resolve(scene.shapes.len()) {
             Accel::Bvh => {
+                let prepared = Prepared::new(scene, eye);
                 let (bvh, reordered) = Bvh::new(&prepared, scene, eye);
                 PacketScene {
                     packed: Packed::new(&reordered),
                     bvh: Some(bvh),
+                    tiles: None,
+                }
+            }
+            Accel::Tiles => {
+                let packed = Packed::from_scene(scene, eye);
+                let tiles = Tiles::new(scene, &packed, camera);
+                PacketScene {
+                    packed,
+                    bvh: None,
+                    tiles: Some(tiles),
                 }
             }
             _ => PacketScene {
-                packed: Packed::new(&prepared),
+                packed: Packed::from_scene(scene, eye),
                 bvh: None,
+                tiles: None,
             },
         }
     }
 
     /// The acceleration in use.
     pub fn accel(&self) -> Accel {
-        if self.bvh.is_some() {
-            Accel::Bvh
-        } else {
-            Accel::None
+        match (&self.bvh, &self.tiles) {
+            (Some(_), _) => Accel::Bvh,
+            (_, Some(_)) => Accel::Tiles,
+            _ => Accel::None,
         }
     }
 
-    /// Nearest hits of eight rays.
+    /// Nearest hits of the eight rays `d` of the pixel block `[x0, y0, x1, y1]` (inclusive;
+    /// the block lies in one tile of `accel::tiles`).
     #[inline(always)]
-    pub fn trace_x8(&self, d: &[f32x8; 3], hit: &mut Hit8) {
-        match &self.bvh {
-            Some(bvh) => trace_bvh_x8(&self.packed, bvh, d, hit),
-            None => trace_x8(&self.packed, d, hit),
+    pub fn trace_x8(&self, block: [usize; 4], d: &[f32x8; 3], hit: &mut Hit8) {
+        match (&self.bvh, &self.tiles) {
+            (Some(bvh), _) => trace_bvh_x8(&self.packed, bvh, d, hit),
+            (_, Some(tiles)) => {
+                let tile = (block[0] / TILE_W, block[1] / TILE_H);
+                tiles.trace_x8(&self.packed, tile, block, d, hit)
+            }
+            _ => trace_x8(&self.packed, d, hit),
         }
     }
 }
@@ -150,7 +174,8 @@ pub fn render_packet_blocks<const BW: usize>(
             for bx in (0..width).step_by(BW) {
                 let (d, active) = block_rays::<BW>(tables, bx, y_start + by, width, height);
                 let mut hit = Hit8::new(active);
-                p.trace_x8(&d, &mut hit);
+                let y = y_start + by;
+                p.trace_x8([bx, y, bx + BW - 1, y + LANES / BW - 1], &d, &mut hit);
                 let (t, id) = (hit.t.to_array(), hit.id.to_array());
                 for lane in 0..LANES {
                     let (x, y) = (bx + lane % BW, by + lane / BW);
@@ -242,7 +267,7 @@ impl Setup {
     ) -> Setup {
         match kernel {
             Kernel::Packet => Setup::Packet(
-                Box::new(PacketScene::new(scene, camera.eye, accel)),
+                Box::new(PacketScene::new(scene, camera, accel)),
                 camera.tables(BLOCK_W as u32, BLOCK_H as u32),
             ),
             Kernel::ScalarF32 => {

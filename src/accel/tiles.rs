@@ -1,0 +1,568 @@
+//! Object-order casting for primary rays: every primitive is taken to the screen tiles it may
+//! cover, and each tile's packets test only that tile's list, nearest first.
+//!
+//! All rays start at the eye, and the polygon kernel already tests a ray against the planes
+//! through the eye and each edge: the 3D edge functions of a rasterizer (Davidovič, Engelhardt,
+//! Georgiev, Slusallek, Hachisuka, "3D Rasterization: a bridge between rasterization and ray
+//! casting", Graphics Interface 2012). So a primitive's pixels can be bounded in setup:
+//!
+//! - Projection. A point `q` (eye-relative) lies on pixel coordinates
+//!   `x = (sx / half_w + 1) W/2 - 1/2`, `y = (1 - sy / half_h) H/2 - 1/2`, with
+//!   `sx = q.r / q.f`, `sy = q.u / q.f` (`camera.rs` inverted: pixel x's ray has that sx).
+//!   A convex polygon entirely in front of the eye projects inside the box of its projected
+//!   vertices; a sphere inside the box of its camera-aligned bounding cube's 8 corners.
+//! - Margin. The kernels accept rays up to `edge_eps` = 8u radians outside an edge plane, and
+//!   the f32 ray directions err by a few u: 32u (1.9e-6 rad) covers both twice over. An angle
+//!   `a` moves the screen coordinate by at most `a (1 + s^2)` (s = tan of the angle off the
+//!   axis, at most `half_w^2 + half_h^2` squared), which is turned into pixels and rounded out,
+//!   plus one whole pixel for the rounding of the projection itself (f64, far below a pixel).
+//! - Anything that reaches to or behind the eye's plane (a vertex or the cube within
+//!   `NEAR_PLANE_REL` of it, the eye inside a sphere) gets the whole image: its projection is
+//!   unbounded. Rectangles are clipped to the image; one wholly outside it is dropped.
+//!
+//! Binning is a parallel counting sort: per-primitive rectangles in parallel, per-tile counts
+//! with atomic adds, a prefix sum, a parallel scatter, then each tile's list sorted by
+//! (near distance, primitive) in parallel, so the order is the same at any thread count.
+//!
+//! Occlusion without a tree: each list entry carries `near`, a lower bound on any distance the
+//! f32 kernel can return for that primitive (below). A packet walks its tile's list in order of
+//! `near` and leaves it once every active lane already has a hit nearer than the next entry's
+//! `near`: no later entry can win. Ids and depths are bit-identical to `--accel none`: the same
+//! kernels, the same (t, id) minimum, and every entry that could win is tested.
+//!
+//! `near` (f64, less a relative margin, rounded down to f32), u = 2^-24:
+//! - polygon, by its plane: `p`, the distance from the eye to its plane. The kernel's
+//!   `t = p' / (d . N')` with `|d . N'| <= 1 + 4u` (unit vectors, rounded) and
+//!   `p' >= p (1 - u)`, so any returned `t >= p (1 - 5u)` at any angle of incidence.
+//! - polygon, by its distance: `D`, the distance from the eye to the polygon (its closest point,
+//!   Ericson's triangle test), is a far tighter bound for a mesh, whose planes often pass near
+//!   the eye. A ray the kernel accepts meets the plane at most `a t / c` outside the polygon
+//!   (`a` <= 16u: edge tolerance and direction error; `c = d . N`, the cosine of incidence),
+//!   and `d . N'` errs by 4u, so `t' >= D (1 - 2u) / ((1 + a/c)(1 + 4u/c))`. Every accepted ray
+//!   has `c >= p / dmax` (dmax: the farthest vertex), so with `k = dmax / p`,
+//!   `t' >= D (1 - 24u k)` to first order; lanecast takes `D (1 - 64u k)`. The larger of the
+//!   two bounds is used, less 1e-5 relative.
+//! - sphere: `|oc| - r` (0 with the eye inside). The stable form returns `c / q` with
+//!   `c = |oc|^2 - r^2` and `q = b + sqrt(disc)`; disc carries an absolute error of a few
+//!   `u |oc|^2`, so `q <= |oc| + r + 7e-4 |oc|` and `t >= (|oc| - r)(1 - 7e-4)`; lanecast takes
+//!   2e-3.
+//!
+//! `kernels_accept_rays_only_inside_rectangles_and_beyond_near` checks `t >= near` ray by ray.
+//!
+//! Precision assumed: f32 kernels fed by f64 setup (as `soa`); the bounds above hold for any
+//! scene `scene::validate::f32_range` accepts. Known to cost, not to fail: a primitive crossing
+//! the eye's plane is in every tile's list (correct, slow if there are many); a deep stack of
+//! large overlapping primitives fills every list (the BVH culls those better).
+//! Proven by tests/accel.rs (tiles == none, bit for bit: seed scenes, random scenes, primitives
+//! crossing the eye's plane, the eye inside a sphere, rectangles clipped at the border).
+
+use crate::camera::Camera;
+use crate::kernel::Hit8;
+use crate::kernel::polygon::polygon_x8;
+use crate::kernel::sphere::sphere_x8;
+use crate::soa::Packed;
+use glam::DVec3;
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicU32, Ordering};
+use wide::f32x8;
+
+/// Tile width in pixels: two packets of 4x2. Measured against 16 and 32 (README, "Acceleration"):
+/// the same on the seed scenes, 10-25% faster from 65,536 primitives on.
+pub const TILE_W: usize = 8;
+/// Tile height in pixels: the renderer's strip height, so a strip is one row of tiles.
+pub const TILE_H: usize = 8;
+
+/// f32 unit roundoff.
+const U32: f64 = f32::EPSILON as f64 / 2.0;
+/// Multiple of `u k` taken off a polygon's distance bound (derived: 24; see the module comment).
+const GRAZING_U: f64 = 64.0;
+/// Relative margin taken off every polygon's `near` on top of the derived bounds.
+const POLYGON_MARGIN: f64 = 1e-5;
+/// Relative margin taken off a sphere's `|oc| - r` (derived: 7e-4; see the module comment).
+const SPHERE_MARGIN: f64 = 2e-3;
+/// A point closer to the eye's plane than this fraction of its distance makes a primitive's
+/// projection unbounded: it gets the whole image.
+const NEAR_PLANE_REL: f64 = 1e-6;
+/// Points this far behind the eye's plane (relative to their distance: a sine) cannot be hit
+/// by a forward ray: ~1e3 times the kernels' angular tolerance.
+const BEHIND_REL: f64 = 1e-3;
+/// Angular margin around every primitive, radians: twice (8u edge tolerance + 8u ray error).
+const ANGLE_MARGIN: f64 = 32.0 * (f32::EPSILON as f64 / 2.0);
+
+/// Kinds of list entries (top two bits of [`Entry::prim`]).
+const SPHERE: u32 = 0;
+const TRIANGLE: u32 = 1;
+const QUAD: u32 = 2;
+const KIND_SHIFT: u32 = 30;
+const INDEX_MASK: u32 = (1 << KIND_SHIFT) - 1;
+
+/// One primitive in one tile's list.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Entry {
+    /// Lower bound on any distance the kernel returns for this primitive (f32, rounded down).
+    near: f32,
+    /// Kind (top two bits) and index into that kind's packed store.
+    prim: u32,
+    /// Pixel rectangle the primitive may cover, inclusive: x0, y0, x1, y1.
+    rect: [u16; 4],
+}
+
+/// A primitive's screen footprint before binning.
+#[derive(Debug, Clone, Copy)]
+struct Footprint {
+    entry: Entry,
+    /// Tile rectangle, inclusive, or `None` when off screen.
+    tiles: Option<[u32; 4]>,
+}
+
+/// Per-tile lists of primitives, nearest first.
+#[derive(Debug, Clone)]
+pub struct Tiles {
+    cols: usize,
+    /// `start[t]..start[t + 1]` is tile t's range of `entries` (tiles in row-major order).
+    start: Vec<u32>,
+    entries: Vec<Entry>,
+}
+
+/// The screen geometry a footprint is measured in.
+struct Screen {
+    eye: DVec3,
+    f: DVec3,
+    r: DVec3,
+    u: DVec3,
+    half_w: f64,
+    half_h: f64,
+    w: f64,
+    h: f64,
+    /// Margin in pixels (x, y).
+    margin: (f64, f64),
+}
+
+impl Screen {
+    fn new(c: &Camera) -> Screen {
+        let stretch = 1.0 + c.half_w * c.half_w + c.half_h * c.half_h;
+        let (w, h) = (c.width as f64, c.height as f64);
+        let px = |half: f64, n: f64| ANGLE_MARGIN * stretch / (2.0 * half / n) + 1.0;
+        Screen {
+            eye: c.eye,
+            f: c.f,
+            r: c.r,
+            u: c.u,
+            half_w: c.half_w,
+            half_h: c.half_h,
+            w,
+            h,
+            margin: (px(c.half_w, w), px(c.half_h, h)),
+        }
+    }
+
+    /// Pixel coordinates of eye-relative point `q`, or `None` when it is not safely in front.
+    fn project(&self, q: DVec3) -> Option<(f64, f64)> {
+        let z = q.dot(self.f);
+        // written so that a NaN is "not in front"
+        #[allow(clippy::neg_cmp_op_on_partial_ord)]
+        if !(z > NEAR_PLANE_REL * q.length()) {
+            return None;
+        }
+        let (sx, sy) = (q.dot(self.r) / z, q.dot(self.u) / z);
+        Some((
+            (sx / self.half_w + 1.0) * self.w / 2.0 - 0.5,
+            (1.0 - sy / self.half_h) * self.h / 2.0 - 0.5,
+        ))
+    }
+
+    /// The pixel rectangle (inclusive, clipped) covering the projections of `points` with the
+    /// margin; the whole image when a point is not in front; `None` when off screen or when
+    /// every point is clearly behind the eye (`BEHIND_REL`: no forward ray, widened by the
+    /// kernels' tolerance, reaches the convex hull of such points).
+    fn rect(&self, points: impl Iterator<Item = DVec3>) -> Option<[u16; 4]> {
+        let (mut x0, mut y0) = (f64::INFINITY, f64::INFINITY);
+        let (mut x1, mut y1) = (f64::NEG_INFINITY, f64::NEG_INFINITY);
+        let (mut unbounded, mut all_behind) = (false, true);
+        for q in points {
+            all_behind &= q.dot(self.f) < -BEHIND_REL * q.length();
+            match self.project(q) {
+                Some((x, y)) => (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y)),
+                None => unbounded = true,
+            }
+        }
+        if all_behind {
+            return None;
+        }
+        if unbounded {
+            return Some(self.whole());
+        }
+        let (mx, my) = self.margin;
+        let (x0, x1) = (
+            (x0 - mx).floor().max(0.0),
+            (x1 + mx).ceil().min(self.w - 1.0),
+        );
+        let (y0, y1) = (
+            (y0 - my).floor().max(0.0),
+            (y1 + my).ceil().min(self.h - 1.0),
+        );
+        // NaN compares false: a NaN rectangle is treated as off screen only if the comparisons
+        // say so; guard explicitly so a NaN gives the whole image instead.
+        if x0.is_nan() || x1.is_nan() || y0.is_nan() || y1.is_nan() {
+            return Some(self.whole());
+        }
+        (x0 <= x1 && y0 <= y1).then_some([x0 as u16, y0 as u16, x1 as u16, y1 as u16])
+    }
+
+    fn whole(&self) -> [u16; 4] {
+        [0, 0, self.w as u16 - 1, self.h as u16 - 1]
+    }
+}
+
+/// `near` (margins already taken) rounded down to f32.
+fn near_f32(near: f64) -> f32 {
+    let n = near.max(0.0);
+    let f = n as f32;
+    if f as f64 > n { f.next_down() } else { f }
+}
+
+impl Tiles {
+    /// Bins the primitives of `packed` (whose ids index `scene.shapes`) for `camera`.
+    pub fn new(scene: &crate::scene::Scene, packed: &Packed, camera: &Camera) -> Tiles {
+        let screen = Screen::new(camera);
+        let (w, h) = (camera.width as usize, camera.height as usize);
+        let (cols, rows) = (w.div_ceil(TILE_W), h.div_ceil(TILE_H));
+        let eye = camera.eye;
+        let footprint = |kind: u32, index: usize, id: f32| -> Footprint {
+            let shape = &scene.shapes[id as usize];
+            let (rect, near) = match *shape {
+                crate::scene::Shape::Sphere { center, radius } => {
+                    let oc = center - eye;
+                    let dist = oc.length();
+                    let rect = if dist <= radius {
+                        Some(screen.whole())
+                    } else {
+                        let (c, r) = ((screen.r, screen.u, screen.f), radius);
+                        let corners = (0..8).map(|i| {
+                            let s = |bit: usize| if i >> bit & 1 == 1 { r } else { -r };
+                            oc + c.0 * s(0) + c.1 * s(1) + c.2 * s(2)
+                        });
+                        screen.rect(corners)
+                    };
+                    (rect, (dist - radius).max(0.0) * (1.0 - SPHERE_MARGIN))
+                }
+                crate::scene::Shape::Triangle(v) => polygon_footprint(&screen, &v),
+                crate::scene::Shape::Quad(v) => polygon_footprint(&screen, &v),
+            };
+            let entry = Entry {
+                near: near_f32(near),
+                prim: kind << KIND_SHIFT | index as u32,
+                rect: rect.unwrap_or([0; 4]),
+            };
+            let tiles = rect.map(|[x0, y0, x1, y1]| {
+                [
+                    x0 as u32 / TILE_W as u32,
+                    y0 as u32 / TILE_H as u32,
+                    x1 as u32 / TILE_W as u32,
+                    y1 as u32 / TILE_H as u32,
+                ]
+            });
+            Footprint { entry, tiles }
+        };
+        // Footprints of every primitive, in parallel.
+        let mut prints: Vec<Footprint> = Vec::new();
+        prints.par_extend(
+            (0..packed.spheres.len())
+                .into_par_iter()
+                .map(|i| footprint(SPHERE, i, packed.spheres.id[i])),
+        );
+        prints.par_extend(
+            (0..packed.triangles.len())
+                .into_par_iter()
+                .map(|i| footprint(TRIANGLE, i, packed.triangles.id[i])),
+        );
+        prints.par_extend(
+            (0..packed.quads.len())
+                .into_par_iter()
+                .map(|i| footprint(QUAD, i, packed.quads.id[i])),
+        );
+        let covered = |f: &Footprint| {
+            let [tx0, ty0, tx1, ty1] = f.tiles.expect("only on-screen footprints");
+            (ty0..=ty1)
+                .flat_map(move |ty| (tx0..=tx1).map(move |tx| ty as usize * cols + tx as usize))
+        };
+        // Counting sort: counts, prefix sum, scatter.
+        let counts: Vec<AtomicU32> = (0..cols * rows).map(|_| AtomicU32::new(0)).collect();
+        prints
+            .par_iter()
+            .filter(|f| f.tiles.is_some())
+            .for_each(|f| {
+                for t in covered(f) {
+                    counts[t].fetch_add(1, Ordering::Relaxed);
+                }
+            });
+        let mut start = Vec::with_capacity(cols * rows + 1);
+        let mut sum = 0u32;
+        start.push(0);
+        for c in &counts {
+            sum += c.load(Ordering::Relaxed);
+            start.push(sum);
+        }
+        let cursor: Vec<AtomicU32> = start[..cols * rows]
+            .iter()
+            .map(|&s| AtomicU32::new(s))
+            .collect();
+        let slots: Vec<AtomicU32> = (0..sum).map(|_| AtomicU32::new(0)).collect();
+        prints
+            .par_iter()
+            .enumerate()
+            .filter(|(_, f)| f.tiles.is_some())
+            .for_each(|(i, f)| {
+                for t in covered(f) {
+                    let at = cursor[t].fetch_add(1, Ordering::Relaxed);
+                    slots[at as usize].store(i as u32, Ordering::Relaxed);
+                }
+            });
+        let mut entries: Vec<Entry> = slots
+            .into_par_iter()
+            .map(|s| prints[s.into_inner() as usize].entry)
+            .collect();
+        // Each tile nearest first; ties by kind and index, so the order is deterministic.
+        let mut lists: Vec<&mut [Entry]> = Vec::with_capacity(cols * rows);
+        let mut rest = entries.as_mut_slice();
+        for t in 0..cols * rows {
+            let (list, tail) = rest.split_at_mut((start[t + 1] - start[t]) as usize);
+            lists.push(list);
+            rest = tail;
+        }
+        lists.par_iter_mut().for_each(|l| {
+            l.sort_unstable_by(|a, b| a.near.total_cmp(&b.near).then(a.prim.cmp(&b.prim)))
+        });
+        Tiles {
+            cols,
+            start,
+            entries,
+        }
+    }
+
+    fn list(&self, tx: usize, ty: usize) -> &[Entry] {
+        let t = ty * self.cols + tx;
+        &self.entries[self.start[t] as usize..self.start[t + 1] as usize]
+    }
+
+    /// Nearest hits of the eight rays `d` of the pixel block `[x0, y0, x1, y1]` (inclusive), in
+    /// tile (tx, ty): the tile's list, nearest first, left once no entry can win.
+    #[inline]
+    pub fn trace_x8(
+        &self,
+        p: &Packed,
+        (tx, ty): (usize, usize),
+        [x0, y0, bx1, by1]: [usize; 4],
+        d: &[f32x8; 3],
+        hit: &mut Hit8,
+    ) {
+        let mut far = lanes_max(hit.t);
+        for e in self.list(tx, ty) {
+            // every active lane has a hit nearer than anything left in the list
+            if far < e.near {
+                return;
+            }
+            let [rx0, ry0, rx1, ry1] = e.rect.map(|v| v as usize);
+            if bx1 < rx0 || x0 > rx1 || by1 < ry0 || y0 > ry1 {
+                continue;
+            }
+            let i = (e.prim & INDEX_MASK) as usize;
+            let found = match e.prim >> KIND_SHIFT {
+                SPHERE => sphere_x8(&p.spheres.get(i), d).map(|m| (m, p.spheres.id[i])),
+                TRIANGLE => polygon_x8(&p.triangles.get(i), d).map(|m| (m, p.triangles.id[i])),
+                _ => polygon_x8(&p.quads.get(i), d).map(|m| (m, p.quads.id[i])),
+            };
+            if let Some(((mask, t), id)) = found {
+                hit.update(mask, t, id);
+                far = lanes_max(hit.t);
+            }
+        }
+    }
+}
+
+/// The largest of the eight lanes (hit distances: never NaN, inactive lanes 0).
+#[inline(always)]
+fn lanes_max(v: f32x8) -> f32 {
+    v.to_array().into_iter().fold(0.0, f32::max)
+}
+
+/// The rectangle and `near` of a convex polygon (see the module comment).
+fn polygon_footprint<const N: usize>(screen: &Screen, v: &[DVec3; N]) -> (Option<[u16; 4]>, f64) {
+    let q = v.map(|p| p - screen.eye);
+    let rect = screen.rect(q.iter().copied());
+    // p: distance from the eye to the polygon's plane (the kernel's p before rounding).
+    let n = match N {
+        3 => (q[1] - q[0]).cross(q[2] - q[0]),
+        _ => (q[2] - q[0]).cross(q[3] - q[1]),
+    };
+    let Some(n) = n.try_normalize() else {
+        return (rect, 0.0);
+    };
+    let p = q.iter().map(|v| v.dot(n)).sum::<f64>().abs() / N as f64;
+    // D: distance from the eye to the polygon (a quad as triangles ABC and ACD), degraded by
+    // the grazing factor k = dmax / p (module comment); the plane bound holds at any angle.
+    let d = (1..N - 1)
+        .map(|i| closest_to_origin(q[0], q[i], q[i + 1]).length())
+        .fold(f64::INFINITY, f64::min);
+    let k = q.iter().map(|v| v.length()).fold(0.0, f64::max) / p;
+    let by_plane = p * (1.0 - 8.0 * U32);
+    let by_distance = d * (1.0 - GRAZING_U * U32 * k);
+    (rect, by_plane.max(by_distance) * (1.0 - POLYGON_MARGIN))
+}
+
+/// The point of triangle (a, b, c) closest to the origin: Ericson, "Real-Time Collision
+/// Detection" (2005), 5.1.5, by Voronoi regions of the vertices, edges and face (f64).
+fn closest_to_origin(a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
+    let (ab, ac, ap) = (b - a, c - a, -a);
+    let (d1, d2) = (ab.dot(ap), ac.dot(ap));
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return a;
+    }
+    let bp = -b;
+    let (d3, d4) = (ab.dot(bp), ac.dot(bp));
+    if d3 >= 0.0 && d4 <= d3 {
+        return b;
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        return a + ab * (d1 / (d1 - d3));
+    }
+    let cp = -c;
+    let (d5, d6) = (ab.dot(cp), ac.dot(cp));
+    if d6 >= 0.0 && d5 <= d6 {
+        return c;
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        return a + ac * (d2 / (d2 - d6));
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0 {
+        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+    }
+    let denom = 1.0 / (va + vb + vc);
+    a + ab * (vb * denom) + ac * (vc * denom)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{CameraSpec, Scene, Shape};
+    use crate::soa::Prepared;
+
+    /// xorshift64*, uniform in [0, 1).
+    struct Rng(u64);
+    impl Rng {
+        fn next(&mut self) -> f64 {
+            self.0 ^= self.0 >> 12;
+            self.0 ^= self.0 << 25;
+            self.0 ^= self.0 >> 27;
+            (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
+        }
+        fn point(&mut self, half: f64) -> DVec3 {
+            DVec3::new(self.next(), self.next(), self.next()) * 2.0 * half - half
+        }
+    }
+
+    /// Primitives of every kind and size around the eye: tiny and large, in front, crossing
+    /// the eye's plane, behind, and the eye inside one sphere.
+    fn scene(seed: u64, eye: DVec3, look: DVec3, fov: f64) -> Scene {
+        let mut rng = Rng(seed);
+        let mut shapes = Vec::new();
+        for i in 0..300 {
+            let size = [0.01, 0.1, 1.0, 5.0][i % 4];
+            let c = rng.point(6.0);
+            match i % 3 {
+                0 => shapes.push(Shape::Sphere {
+                    center: c,
+                    radius: size * (0.2 + rng.next()),
+                }),
+                1 => shapes.push(Shape::Triangle([
+                    c,
+                    c + rng.point(size),
+                    c + rng.point(size),
+                ])),
+                _ => {
+                    let (a, b) = (rng.point(size), rng.point(size));
+                    shapes.push(Shape::Quad([c, c + a, c + a + b, c + b]));
+                }
+            }
+        }
+        shapes.push(Shape::Sphere {
+            center: eye + DVec3::new(0.1, 0.0, 0.0),
+            radius: 20.0,
+        });
+        Scene {
+            source: "tiles.sc".into(),
+            camera: CameraSpec {
+                eye,
+                look,
+                up: DVec3::Y,
+                fov_deg: Some(fov),
+            },
+            lines: vec![1; shapes.len()],
+            shapes,
+            warnings: Vec::new(),
+        }
+    }
+
+    /// The claims the binning rests on, checked ray by ray against the kernels themselves: every
+    /// pixel whose ray a primitive's f32 kernel accepts lies in that primitive's rectangle, and
+    /// the distance it returns is at least the entry's `near`.
+    #[test]
+    fn kernels_accept_rays_only_inside_rectangles_and_beyond_near() {
+        for (seed, fov) in [(1, 60.0), (2, 150.0), (3, 20.0)] {
+            let eye = DVec3::new(0.3, 0.2, 1.0);
+            let scene = scene(seed, eye, DVec3::new(0.0, 0.0, -3.0), fov);
+            let camera = Camera::new(&scene.camera, fov, 97, 61);
+            let packed = Packed::new(&Prepared::new(&scene, eye));
+            let tiles = Tiles::new(&scene, &packed, &camera);
+            let mut first: std::collections::HashMap<u32, Entry> = Default::default();
+            for e in &tiles.entries {
+                first.entry(e.prim).or_insert(*e);
+            }
+            let tables = camera.tables::<f32>(1, 1);
+            let mut accepted = 0;
+            for y in 0..61 {
+                for x in 0..97 {
+                    let d = tables.dir_x1(x, y).map(f32x8::splat);
+                    let kinds = [
+                        (SPHERE, packed.spheres.len()),
+                        (TRIANGLE, packed.triangles.len()),
+                        (QUAD, packed.quads.len()),
+                    ];
+                    for (kind, n) in kinds {
+                        for i in 0..n {
+                            let found = match kind {
+                                SPHERE => sphere_x8(&packed.spheres.get(i), &d),
+                                TRIANGLE => polygon_x8(&packed.triangles.get(i), &d),
+                                _ => polygon_x8(&packed.quads.get(i), &d),
+                            };
+                            let Some((mask, t)) = found else { continue };
+                            let (m, t) = (mask.to_array()[0], t.to_array()[0]);
+                            if m == 0.0 || !(t > 0.0) {
+                                continue;
+                            }
+                            accepted += 1;
+                            let prim = kind << KIND_SHIFT | i as u32;
+                            let e = first.get(&prim).unwrap_or_else(|| {
+                                panic!("seed {seed}: kind {kind} #{i} hit at ({x}, {y}), binned nowhere")
+                            });
+                            let [x0, y0, x1, y1] = e.rect.map(|v| v as usize);
+                            assert!(
+                                (x0..=x1).contains(&x) && (y0..=y1).contains(&y),
+                                "seed {seed}: kind {kind} #{i} hit at ({x}, {y}) outside {:?}",
+                                e.rect
+                            );
+                            assert!(t >= e.near, "seed {seed}: t {t} < near {}", e.near);
+                        }
+                    }
+                }
+            }
+            assert!(
+                accepted > 1000,
+                "seed {seed}: the scene must be seen ({accepted})"
+            );
+        }
+    }
+}
