@@ -34,13 +34,21 @@ pub fn basis(eye: DVec3, look: DVec3, up: DVec3) -> Option<[DVec3; 3]> {
 /// A camera fixed to one image size.
 #[derive(Debug, Clone, Copy)]
 pub struct Camera {
+    /// Ray origin for every pixel, in world coordinates.
     pub eye: DVec3,
+    /// Forward: unit vector from the eye towards `look`.
     pub f: DVec3,
+    /// Right: unit vector, normalize(f x up).
     pub r: DVec3,
+    /// Camera up: unit vector, r x f.
     pub u: DVec3,
+    /// Image width in pixels.
     pub width: u32,
+    /// Image height in pixels.
     pub height: u32,
+    /// tan(fov / 2), fov horizontal: the screen half-width at distance 1.
     pub half_w: f64,
+    /// half_w * height / width: the screen half-height at distance 1.
     pub half_h: f64,
 }
 
@@ -126,10 +134,15 @@ impl Camera {
 /// What the kernels need to make any pixel's ray: see the module comment.
 #[derive(Debug, Clone)]
 pub struct RayTables<T> {
+    /// Screen x of each column ([`Camera::sx`]), padded by repeating the last column.
     pub sx: Vec<T>,
+    /// Screen y of each row ([`Camera::sy`], row 0 at the top), padded likewise.
     pub sy: Vec<T>,
+    /// Forward basis vector, rounded to `T`.
     pub f: V3<T>,
+    /// Right basis vector, rounded to `T`.
     pub r: V3<T>,
+    /// Up basis vector, rounded to `T`.
     pub u: V3<T>,
 }
 

@@ -34,20 +34,29 @@ pub const EDGE_BAND: f64 = 32.0 * (f32::EPSILON as f64 / 2.0);
 /// The outcome of one comparison.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Report {
+    /// Pixels compared (width x height).
     pub pixels: usize,
+    /// Pixels whose primitive id differs from the oracle's (ties + edges + unexcused).
     pub mismatches: usize,
+    /// Mismatches that are ties: both candidates hit within [`TIE_REL`].
     pub ties: usize,
+    /// Mismatches within [`EDGE_BAND`] of either candidate's boundary.
     pub edges: usize,
+    /// Mismatches that are neither ties nor in the edge band.
     pub unexcused: usize,
     /// Pixels where both kernels hit the same primitive.
     pub same_hits: usize,
+    /// Largest relative depth error |t_f32 - t_f64| / t_f64 over the same-hit pixels (0 if none).
     pub depth_rel_max: f64,
+    /// 99th percentile (nearest rank) of the same relative depth errors (0 if none).
     pub depth_rel_p99: f64,
     /// Per pixel: 0 agree, [`TIE`], [`EDGE`] or [`UNEXCUSED`].
     pub class: Vec<u8>,
 }
 
 impl Report {
+    /// Unexcused mismatches in parts per million of the pixels, the figure
+    /// `--max-mismatch-ppm` limits.
     pub fn unexcused_ppm(&self) -> f64 {
         self.unexcused as f64 * 1e6 / self.pixels.max(1) as f64
     }
@@ -165,9 +174,11 @@ pub fn compare_frame(scene: &Scene, camera: &Camera, packet: &Frame<f32>) -> (Re
     (r, oracle)
 }
 
-/// Mismatch classes of [`Report::class`].
+/// Mismatch class of [`Report::class`]: a tie (both hit, distances within [`TIE_REL`]).
 pub const TIE: u8 = 1;
+/// Mismatch class of [`Report::class`]: the ray is within [`EDGE_BAND`] of a boundary.
 pub const EDGE: u8 = 2;
+/// Mismatch class of [`Report::class`]: neither a tie nor in the edge band.
 pub const UNEXCUSED: u8 = 3;
 
 /// Marking colour of a mismatch class: tie yellow, edge band cyan, unexcused red.

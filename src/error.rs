@@ -11,17 +11,29 @@ pub enum Error {
     Usage(String),
     /// Bad content in an input file, at a 1-based line and column (column 0: whole line).
     Input {
+        /// The file, as the path it was opened by.
         file: PathBuf,
+        /// 1-based line number.
         line: usize,
+        /// 1-based column, or 0 when the message is about the whole line.
         col: usize,
+        /// What is wrong, without the location.
         msg: String,
     },
     /// An input file as a whole is unusable (unreadable, not UTF-8, no camera line...).
-    InputFile { file: PathBuf, msg: String },
+    InputFile {
+        /// The file, as the path it was opened by.
+        file: PathBuf,
+        /// What is wrong with it.
+        msg: String,
+    },
     /// Reading or writing a file failed.
     Io {
+        /// The file or folder the operation was on.
         path: PathBuf,
+        /// What was being done, as a verb phrase after "cannot" ("read mesh", "write output").
         action: &'static str,
+        /// The underlying I/O error.
         source: std::io::Error,
     },
     /// Anything else that is not the user's input: encoder failures, failed comparisons.
@@ -29,6 +41,8 @@ pub enum Error {
 }
 
 impl Error {
+    /// The process exit code for this error: 2 for usage and input errors, 1 for I/O and
+    /// other failures.
     pub fn exit_code(&self) -> i32 {
         match self {
             Error::Usage(_) | Error::Input { .. } | Error::InputFile { .. } => 2,
@@ -36,10 +50,12 @@ impl Error {
         }
     }
 
+    /// A [`Error::Usage`] with the given message.
     pub fn usage(msg: impl Into<String>) -> Error {
         Error::Usage(msg.into())
     }
 
+    /// An [`Error::Input`] at `file`, 1-based `line` and `col` (0 for the whole line).
     pub fn input(
         file: impl Into<PathBuf>,
         line: usize,
@@ -54,6 +70,7 @@ impl Error {
         }
     }
 
+    /// An [`Error::Io`]: `action` on `path` failed with `source`.
     pub fn io(path: impl Into<PathBuf>, action: &'static str, source: std::io::Error) -> Error {
         Error::Io {
             path: path.into(),
@@ -93,4 +110,5 @@ impl fmt::Display for Error {
 
 impl std::error::Error for Error {}
 
+/// `std::result::Result` with lanecast's [`Error`] as the default error type.
 pub type Result<T, E = Error> = std::result::Result<T, E>;

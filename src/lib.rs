@@ -39,7 +39,7 @@
 //!
 //! Modules, lowest layer first (lower layers never import higher ones): [`scene`] (parse,
 //! validate, meshes) -> [`camera`], [`soa`] -> [`kernel`] (default kernels and the other
-//! intersection methods) -> [`accel`] -> [`render`] -> [`shade`], [`output`] -> [`compare`] ->
+//! intersection methods) -> [`accel`] -> [`render`] -> [`shade`](mod@shade), [`output`] -> [`compare`] ->
 //! the command line (private). [`error`], [`limits`] and [`real`] are shared by all.
 
 #![warn(missing_docs)]

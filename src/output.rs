@@ -27,7 +27,9 @@ use crate::{Error, Result};
 /// Image formats lanecast writes, chosen by the output file's extension.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ImageFormat {
+    /// PNG (`.png`), 8-bit RGB.
     Png,
+    /// BMP (`.bmp`), 24-bit RGB.
     Bmp,
 }
 

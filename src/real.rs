@@ -3,6 +3,8 @@
 
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
+/// A floating-point scalar (implemented for f32 and f64) that the generic scalar kernels are
+/// written over: arithmetic, comparison, a few constants, conversion and `sqrt`.
 pub trait Real:
     Copy
     + PartialOrd
@@ -16,15 +18,23 @@ pub trait Real:
     + Sync
     + 'static
 {
+    /// 0.
     const ZERO: Self;
+    /// 1.
     const ONE: Self;
+    /// 2.
     const TWO: Self;
+    /// 0.5.
     const HALF: Self;
+    /// Positive infinity: the starting nearest distance, and a bound hit distances stay below.
     const INFINITY: Self;
     /// Unit roundoff u = 2^-p (p = 24 for f32, 53 for f64).
     const UNIT_ROUNDOFF: Self;
+    /// Converts from f64, rounding to nearest for f32.
     fn from_f64(v: f64) -> Self;
+    /// Converts to f64 (exact for both precisions).
     fn to_f64(self) -> f64;
+    /// The correctly rounded square root.
     fn sqrt(self) -> Self;
 }
 

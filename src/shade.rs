@@ -38,11 +38,14 @@ pub const B_MIN: f64 = 0.2;
 /// How each primitive gets its base colour.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ColorMode {
+    /// `random`: a vivid colour hashed from the id and the seed (the default).
     Random,
+    /// `ordered`: [`PALETTE`] in order of first appearance, scanning from the top-left pixel.
     Ordered,
 }
 
 impl ColorMode {
+    /// The mode named `s` on the command line (`random`, `ordered`), or `None`.
     pub fn parse(s: &str) -> Option<Self> {
         match s {
             "random" => Some(ColorMode::Random),
@@ -51,6 +54,7 @@ impl ColorMode {
         }
     }
 
+    /// The command-line name of the mode, as [`ColorMode::parse`] accepts it.
     pub fn name(&self) -> &'static str {
         match self {
             ColorMode::Random => "random",
@@ -62,11 +66,14 @@ impl ColorMode {
 /// How brightness falls off with hit distance.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Variation {
+    /// `linear`: brightness falls linearly from 1 at `tmin` to [`B_MIN`] at `tmax`.
     Linear,
+    /// `log`: brightness falls with ln(t / tmin), from 1 at `tmin` to [`B_MIN`] at `tmax`.
     Log,
 }
 
 impl Variation {
+    /// The variation named `s` on the command line (`linear`, `log`), or `None`.
     pub fn parse(s: &str) -> Option<Self> {
         match s {
             "linear" => Some(Variation::Linear),
@@ -75,6 +82,7 @@ impl Variation {
         }
     }
 
+    /// The command-line name of the variation, as [`Variation::parse`] accepts it.
     pub fn name(&self) -> &'static str {
         match self {
             Variation::Linear => "linear",

@@ -16,7 +16,9 @@ use rayon::prelude::*;
 /// One type's prepared primitives and their ids (ascending: file order).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Group<K> {
+    /// Each primitive's constants record.
     pub k: Vec<K>,
+    /// The scene's shape index of each record, parallel to `k`.
     pub id: Vec<i32>,
 }
 
@@ -35,10 +37,12 @@ impl<K> Group<K> {
         self.id.push(id as i32);
     }
 
+    /// Number of primitives.
     pub fn len(&self) -> usize {
         self.k.len()
     }
 
+    /// True when the group holds no primitive.
     pub fn is_empty(&self) -> bool {
         self.k.is_empty()
     }
@@ -64,8 +68,11 @@ impl<K> Group<K> {
 /// are left out (they cover no pixel; see `kernel::polygon`).
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Prepared<T> {
+    /// Sphere constants.
     pub spheres: Group<SphereK<T>>,
+    /// Triangle constants (3 edge planes).
     pub triangles: Group<TriangleK<T>>,
+    /// Quad constants (4 edge planes).
     pub quads: Group<QuadK<T>>,
 }
 
@@ -106,11 +113,17 @@ impl Prepared<f64> {
 /// Spheres as f32 columns.
 #[derive(Debug, Clone, Default)]
 pub struct Spheres {
+    /// Centre minus eye, x.
     pub ocx: Vec<f32>,
+    /// Centre minus eye, y.
     pub ocy: Vec<f32>,
+    /// Centre minus eye, z.
     pub ocz: Vec<f32>,
+    /// Radius squared.
     pub r2: Vec<f32>,
+    /// |centre - eye|^2 - radius^2, computed in f64 and rounded.
     pub c: Vec<f32>,
+    /// Eye inside or on the sphere (c <= 0).
     pub inside: Vec<bool>,
     /// Primitive ids as f32 (exact below 2^24 = `limits::MAX_PRIMITIVES`).
     pub id: Vec<f32>,
@@ -130,10 +143,12 @@ impl Spheres {
         }
     }
 
+    /// Number of spheres.
     pub fn len(&self) -> usize {
         self.id.len()
     }
 
+    /// True when there is no sphere.
     pub fn is_empty(&self) -> bool {
         self.id.is_empty()
     }
@@ -176,8 +191,11 @@ impl Spheres {
 /// column of each edge normal, of the plane normal, and the plane distance.
 #[derive(Debug, Clone)]
 pub struct Polygons<const N: usize> {
+    /// Unit edge plane normals: `n[e][c]` is component c (x, y, z) of edge e's normal.
     pub n: [[Vec<f32>; 3]; N],
+    /// Unit plane normal, pointing away from the eye: x, y and z columns.
     pub nrm: [Vec<f32>; 3],
+    /// Distance from the eye to the polygon's plane (> 0).
     pub p: Vec<f32>,
     /// Primitive ids as f32 (exact below 2^24).
     pub id: Vec<f32>,
@@ -206,10 +224,12 @@ impl<const N: usize> Polygons<N> {
         }
     }
 
+    /// Number of polygons.
     pub fn len(&self) -> usize {
         self.id.len()
     }
 
+    /// True when there is no polygon.
     pub fn is_empty(&self) -> bool {
         self.id.is_empty()
     }
@@ -248,8 +268,11 @@ impl<const N: usize> Polygons<N> {
 /// All primitives as f32 structure-of-arrays stores, one per type.
 #[derive(Debug, Clone, Default)]
 pub struct Packed {
+    /// Sphere columns.
     pub spheres: Spheres,
+    /// Triangle columns (3 edge planes).
     pub triangles: Polygons<3>,
+    /// Quad columns (4 edge planes).
     pub quads: Polygons<4>,
 }
 

@@ -32,9 +32,13 @@ pub const AUTO_MIN: usize = 2;
 /// Which acceleration the packet kernel uses.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Accel {
+    /// `auto`: `Tiles` from [`AUTO_MIN`] primitives on, `None` below ([`Accel::resolve`]).
     Auto,
+    /// `none`: every packet tests every primitive.
     None,
+    /// `bvh`: a bounding volume hierarchy over eye-relative boxes, traversed per packet.
     Bvh,
+    /// `tiles`: primitives binned into 8x8-pixel screen tiles, tested nearest first.
     Tiles,
 }
 
@@ -48,6 +52,7 @@ impl Accel {
         }
     }
 
+    /// The `--accel` name of the choice.
     pub fn name(self) -> &'static str {
         match self {
             Accel::Auto => "auto",

@@ -11,11 +11,14 @@
 //! when 0 < t; it replaces the current one when t is smaller, or when t is exactly equal and its
 //! primitive id is lower (exact ties go to the lower id).
 
+pub mod lanes;
 pub mod methods;
 pub mod packet;
 pub mod polygon;
 pub mod scalar;
 pub mod sphere;
+
+pub use lanes::HitLanes;
 
 use crate::real::Real;
 use wide::f32x8;
@@ -28,7 +31,7 @@ pub const LANES: usize = 8;
 /// Evaluating `dot(d, n)` for unit `d` and a rounded unit `n` errs by at most about 4u
 /// (u = unit roundoff: one rounding of `n`, plus the gamma_3 bound of a 3-term dot product), so
 /// 8u is twice the error bound: a ray that exactly grazes a shared edge is accepted by both
-/// triangles' tests rather than by neither. See `triangle.rs` for the watertightness argument.
+/// triangles' tests rather than by neither. See `polygon.rs` for the watertightness argument.
 #[inline]
 pub fn edge_eps<T: Real>() -> T {
     T::from_f64(8.0) * T::UNIT_ROUNDOFF
@@ -37,11 +40,14 @@ pub fn edge_eps<T: Real>() -> T {
 /// The nearest hit of one ray so far: `id == -1` and `t == inf` when there is none.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Hit<T> {
+    /// Distance along the unit ray from the eye (inf: no hit).
     pub t: T,
+    /// Primitive id (-1: no hit).
     pub id: i32,
 }
 
 impl<T: Real> Hit<T> {
+    /// No hit: `t = inf`, `id = -1`.
     pub const NONE: Hit<T> = Hit {
         t: T::INFINITY,
         id: -1,
@@ -66,40 +72,12 @@ pub fn closer<T: Real>(t: T, id: i32, best_t: T, best_id: i32) -> bool {
 /// Eight rays' directions (unit vectors, origin at the eye).
 #[derive(Debug, Clone, Copy)]
 pub struct Ray8 {
+    /// The x, y and z components, one ray per lane.
     pub d: [f32x8; 3],
 }
 
-/// The nearest hits of eight rays. Ids are carried as f32 (exact: at most
-/// `limits::MAX_PRIMITIVES` = 2^24 ids), so every mask stays in the f32 domain.
-/// An inactive lane (a pixel past the image border) starts with `t = 0`: no hit can be closer,
-/// so the lane comes back unchanged.
-#[derive(Debug, Clone, Copy)]
-pub struct Hit8 {
-    pub t: f32x8,
-    pub id: f32x8,
-}
-
-impl Hit8 {
-    /// No hit yet in the `active` lanes; the others are frozen.
-    #[inline(always)]
-    pub fn new(active: f32x8) -> Hit8 {
-        Hit8 {
-            t: active.select(f32x8::splat(f32::INFINITY), f32x8::ZERO),
-            id: f32x8::splat(-1.0),
-        }
-    }
-
-    /// [`closer`], lane by lane, for candidate distances `t` of primitive `id` in the lanes of
-    /// `mask`.
-    #[inline(always)]
-    pub fn update(&mut self, mask: f32x8, t: f32x8, id: f32) {
-        let id = f32x8::splat(id);
-        let wins = t.simd_lt(self.t) | (t.simd_eq(self.t) & id.simd_lt(self.id));
-        let take = mask & t.simd_gt(f32x8::ZERO) & wins;
-        self.t = take.select(t, self.t);
-        self.id = take.select(id, self.id);
-    }
-}
+/// The nearest hits of eight rays, ids as f32 (see [`HitLanes`]).
+pub type Hit8 = HitLanes<f32x8>;
 
 #[cfg(test)]
 mod tests {

@@ -14,6 +14,7 @@ use wide::f32x8;
 /// (x0 + i % BLOCK_W, y0 + i / BLOCK_W). 4x2 was measured against 8x1 with the `block_shape`
 /// group of `cargo bench --bench render` (README, "Block shape").
 pub const BLOCK_W: usize = 4;
+/// Pixel block height: `LANES / BLOCK_W` = 2 rows.
 pub const BLOCK_H: usize = LANES / BLOCK_W;
 
 /// Nearest hits of the rays `d` (unit directions from the eye) among every primitive, folded

@@ -43,6 +43,7 @@
 //! `tests::collapsed_edge_is_dropped`); the eye within ~u|V - O| of an edge's line gives an ill-conditioned edge plane.
 
 use crate::kernel::edge_eps;
+use crate::kernel::lanes::{Lanes, dot_splat};
 use crate::limits::MIN_EDGE_ANGLE;
 use crate::real::{Real, V3, dot, v3};
 use glam::DVec3;
@@ -64,7 +65,9 @@ pub struct PolyK<T, const N: usize> {
     pub p: T,
 }
 
+/// A triangle's constants: three edge planes.
 pub type TriangleK<T> = PolyK<T, 3>;
+/// A quad's constants: four edge planes, no diagonal.
 pub type QuadK<T> = PolyK<T, 4>;
 
 impl<const N: usize> PolyK<f64, N> {
@@ -120,12 +123,16 @@ impl<const N: usize> PolyK<f64, N> {
 }
 
 impl TriangleK<f64> {
+    /// Constants of triangle `v` (A, B, C) seen from `eye`, normal (B - A) x (C - A); `None`
+    /// as for [`PolyK::new`].
     pub fn triangle(v: &[DVec3; 3], eye: DVec3) -> Option<TriangleK<f64>> {
         PolyK::new(v, (v[1] - v[0]).cross(v[2] - v[0]), eye)
     }
 }
 
 impl QuadK<f64> {
+    /// Constants of quad `v` (A, B, C, D in perimeter order) seen from `eye`, normal
+    /// (C - A) x (D - B) from the diagonals; `None` as for [`PolyK::new`].
     pub fn quad(v: &[DVec3; 4], eye: DVec3) -> Option<QuadK<f64>> {
         PolyK::new(v, (v[2] - v[0]).cross(v[3] - v[1]), eye)
     }
@@ -154,26 +161,33 @@ pub fn polygon_x1_within<T: Real, const N: usize>(k: &PolyK<T, N>, d: V3<T>, eps
 /// of lanes that do and their plane distances (the caller keeps those with 0 < t).
 #[inline(always)]
 pub fn polygon_x8<const N: usize>(k: &PolyK<f32, N>, d: &[f32x8; 3]) -> Option<(f32x8, f32x8)> {
+    polygon_lanes(k, d)
+}
+
+/// [`polygon_x1`] in the lanes of `L` (f32x8: [`polygon_x8`]; f64x4: `methods::wide64`), the
+/// same operations in the same order as the 1-lane form.
+#[inline(always)]
+pub fn polygon_lanes<L: Lanes, const N: usize>(
+    k: &PolyK<L::Scalar, N>,
+    d: &[L; 3],
+) -> Option<(L, L)> {
     // edge tests
-    let eps = f32x8::splat(-edge_eps::<f32>());
-    let side = |n: &V3<f32>| {
-        f32x8::splat(n[0]) * d[0] + f32x8::splat(n[1]) * d[1] + f32x8::splat(n[2]) * d[2]
-    };
+    let eps = L::splat(-edge_eps::<L::Scalar>());
     // Leave as soon as no lane is inside an edge: most packets miss most polygons, and the
     // first edge or two rejects them (measured: README, "Kernel tuning").
-    let mut inside = side(&k.n[0]).simd_ge(eps);
+    let mut inside = dot_splat(&k.n[0], d).simd_ge(eps);
     for n in &k.n[1..] {
         if !inside.any() {
             return None;
         }
-        inside &= side(n).simd_ge(eps);
+        inside &= dot_splat(n, d).simd_ge(eps);
     }
     if !inside.any() {
         return None;
     }
     // plane distance, only for packets with a lane inside
-    let den = side(&k.nrm);
-    Some((inside, f32x8::splat(k.p) / den))
+    let den = dot_splat(&k.nrm, d);
+    Some((inside, L::splat(k.p) / den))
 }
 
 #[cfg(test)]

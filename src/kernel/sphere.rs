@@ -26,6 +26,7 @@
 //! rays exactly tangent to a sphere may hit or miss (disc ~ 0 within rounding).
 //! Proven by: `tests::far_small_sphere_*`, `tests::x8_equals_x1_*`, and the agreement tests.
 
+use crate::kernel::lanes::Lanes;
 use crate::real::{Real, V3, dot, v3};
 use glam::DVec3;
 use wide::f32x8;
@@ -44,6 +45,7 @@ pub struct SphereK<T> {
 }
 
 impl SphereK<f64> {
+    /// Constants of the sphere (`center`, `radius`) seen from `eye`, in f64.
     pub fn new(center: DVec3, radius: f64, eye: DVec3) -> SphereK<f64> {
         let oc = center - eye;
         let r2 = radius * radius;
@@ -87,16 +89,23 @@ pub fn sphere_x1<T: Real>(s: &SphereK<T>, d: V3<T>) -> Option<T> {
 /// of lanes whose line does and their distances (the caller keeps those with 0 < t).
 #[inline(always)]
 pub fn sphere_x8(s: &SphereK<f32>, d: &[f32x8; 3]) -> Option<(f32x8, f32x8)> {
-    let oc = s.oc.map(f32x8::splat);
+    sphere_lanes(s, d)
+}
+
+/// [`sphere_x1`] in the lanes of `L` (f32x8: [`sphere_x8`]; f64x4: `methods::wide64`), the same
+/// operations in the same order as the 1-lane form.
+#[inline(always)]
+pub fn sphere_lanes<L: Lanes>(s: &SphereK<L::Scalar>, d: &[L; 3]) -> Option<(L, L)> {
+    let oc = s.oc.map(L::splat);
     let b = oc[0] * d[0] + oc[1] * d[1] + oc[2] * d[2];
     let l = [oc[0] - b * d[0], oc[1] - b * d[1], oc[2] - b * d[2]];
-    let disc = f32x8::splat(s.r2) - (l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
-    let meets = disc.simd_ge(f32x8::ZERO);
+    let disc = L::splat(s.r2) - (l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
+    let meets = disc.simd_ge(L::ZERO);
     if !meets.any() {
         return None;
     }
     let q = b + disc.sqrt();
-    let t = if s.inside { q } else { f32x8::splat(s.c) / q };
+    let t = if s.inside { q } else { L::splat(s.c) / q };
     Some((meets, t))
 }
 

@@ -1,5 +1,6 @@
-//! The lab's brute-force drivers: every ray against every primitive, one thread, one method.
-//! Independent of `render.rs`/`packet.rs`/`scalar.rs` (which may grow acceleration
+//! Brute-force drivers for the intersection methods (`--method`) and the accuracy lab (lab/
+//! crate): every ray against every primitive, one thread, one method. Their loops are separate
+//! from the renderer's (`render/mod.rs`, `kernel/packet.rs`, which have acceleration
 //! structures), so the lab measures the intersection methods alone.
 //!
 //! A [`Kit`] holds one method's constants for one scene (spheres, triangles, quads, each with
@@ -30,30 +31,49 @@ use wide::{f32x8, f64x4};
 
 /// Pixel block of one packet, as in the main renderer: 4 wide, 2 high.
 pub const BW: usize = 4;
+/// Pixel block height: `LANES / BW` = 2 rows.
 pub const BH: usize = LANES / BW;
 
 /// A sphere method: constants and its 1- and 8-lane forms.
 pub trait SphereFamily {
+    /// One sphere's constants, in f32, as the method's kernels read them.
     type K: Copy + Send + Sync;
+    /// The constants of the sphere (`center`, `radius`) seen from `eye`.
     fn make(center: DVec3, radius: f64, eye: DVec3) -> Self::K;
+    /// Distance along unit direction `d` from the eye to the hit, when ahead of the eye.
     fn x1(k: &Self::K, d: V3<f32>) -> Option<f32>;
+    /// [`SphereFamily::x1`] for eight directions: `None` when no lane can hit, else the lane
+    /// mask and distances (the caller keeps the lanes with 0 < t).
     fn x8(k: &Self::K, d: &[f32x8; 3]) -> Option<(f32x8, f32x8)>;
 }
 
 /// A triangle/quad method: constants (`None`: the primitive covers no pixel), the per-ray and
 /// per-packet data it shares over primitives, and its 1- and 8-lane forms.
 pub trait PolyFamily {
+    /// One triangle's constants, in f32.
     type T: Copy + Send + Sync;
+    /// One quad's constants, in f32 (two triangles' for the triangle-only methods).
     type Q: Copy + Send + Sync;
+    /// Per-ray data shared over primitives: the unit direction, or a method's ray transform.
     type R1;
+    /// [`PolyFamily::R1`] for eight rays.
     type R8;
+    /// The constants of triangle `v` (A, B, C) seen from `eye`; `None`: it covers no pixel.
     fn tri(v: &[DVec3; 3], eye: DVec3) -> Option<Self::T>;
+    /// The constants of quad `v` (perimeter order) seen from `eye`; `None`: it covers no pixel.
     fn quad(v: &[DVec3; 4], eye: DVec3) -> Option<Self::Q>;
+    /// The per-ray data of unit direction `d`.
     fn ray1(d: V3<f32>) -> Self::R1;
+    /// The per-packet data of eight unit directions `d`.
     fn ray8(d: &[f32x8; 3]) -> Self::R8;
+    /// Distance to the triangle along ray `r`, when it is hit ahead of the eye.
     fn tri_x1(k: &Self::T, r: &Self::R1) -> Option<f32>;
+    /// [`PolyFamily::tri_x1`] for eight rays: `None` when no lane hits, else the lane mask and
+    /// distances (the caller keeps the lanes with 0 < t).
     fn tri_x8(k: &Self::T, r: &Self::R8) -> Option<(f32x8, f32x8)>;
+    /// Distance to the quad along ray `r`, when it is hit ahead of the eye.
     fn quad_x1(k: &Self::Q, r: &Self::R1) -> Option<f32>;
+    /// [`PolyFamily::quad_x1`] for eight rays, as [`PolyFamily::tri_x8`].
     fn quad_x8(k: &Self::Q, r: &Self::R8) -> Option<(f32x8, f32x8)>;
 }
 
@@ -287,16 +307,23 @@ two_triangle_family!(
 
 /// One method's constants for one scene, with the camera's f32 ray tables.
 pub struct Kit<S: SphereFamily, P: PolyFamily> {
+    /// Each sphere's constants and its id as f32, in file order.
     pub spheres: Vec<(S::K, f32)>,
+    /// Each triangle's constants and id (those the method drops are left out).
     pub triangles: Vec<(P::T, f32)>,
+    /// Each quad's constants and id (those the method drops are left out).
     pub quads: Vec<(P::Q, f32)>,
+    /// The camera's f32 ray tables, padded to whole 4x2 blocks.
     pub tables: RayTables<f32>,
+    /// Image width in pixels.
     pub width: usize,
+    /// Image height in pixels.
     pub height: usize,
     _m: PhantomData<fn() -> (S, P)>,
 }
 
 impl<S: SphereFamily, P: PolyFamily> Kit<S, P> {
+    /// The method's constants for every shape of `scene` seen by `camera` (the setup phase).
     pub fn new(scene: &Scene, camera: &Camera) -> Self {
         let eye = camera.eye;
         let mut kit = Kit {
@@ -417,12 +444,16 @@ impl<S: SphereFamily, P: PolyFamily> Kit<S, P> {
 pub struct Kit64 {
     /// The oracle's own f64 constants.
     pub prepared: Prepared<f64>,
+    /// The camera's f64 ray tables, padded to whole 4x2 blocks.
     pub tables: RayTables<f64>,
+    /// Image width in pixels.
     pub width: usize,
+    /// Image height in pixels.
     pub height: usize,
 }
 
 impl Kit64 {
+    /// The f64 constants and ray tables of `scene` seen by `camera` (the setup phase).
     pub fn new(scene: &Scene, camera: &Camera) -> Kit64 {
         Kit64 {
             prepared: Prepared::new(scene, camera.eye),
@@ -458,6 +489,7 @@ impl Kit64 {
         Self::poly2(&self.prepared.quads, d, hit);
     }
 
+    /// The image in 4x2 blocks of two f64x4 rows, on the calling thread.
     pub fn render(&self) -> Frame<f64> {
         let (w, h) = (self.width, self.height);
         let mut f = Frame::new(w, h, f64::INFINITY);
@@ -495,13 +527,18 @@ impl Kit64 {
 /// The f64 scalar oracle, exactly as `lanecast --kernel scalar` computes it (`soa::Prepared<f64>`
 /// and `kernel::scalar::trace_x1`), one ray at a time on the calling thread.
 pub struct Oracle {
+    /// Every primitive's f64 constants.
     pub prepared: Prepared<f64>,
+    /// The camera's f64 ray tables, one entry per column and row.
     pub tables: RayTables<f64>,
+    /// Image width in pixels.
     pub width: usize,
+    /// Image height in pixels.
     pub height: usize,
 }
 
 impl Oracle {
+    /// The f64 constants and ray tables of `scene` seen by `camera` (the setup phase).
     pub fn new(scene: &Scene, camera: &Camera) -> Oracle {
         Oracle {
             prepared: Prepared::new(scene, camera.eye),
@@ -511,10 +548,12 @@ impl Oracle {
         }
     }
 
+    /// Nearest hit along unit direction `d` from the eye, in f64.
     pub fn trace(&self, d: V3<f64>) -> Hit<f64> {
         trace_x1(&self.prepared, d)
     }
 
+    /// The image one ray at a time, on the calling thread.
     pub fn render(&self) -> Frame<f64> {
         let (w, h) = (self.width, self.height);
         let mut f = Frame::new(w, h, f64::INFINITY);

@@ -32,6 +32,7 @@ pub enum Method {
 }
 
 impl Method {
+    /// Every method, the default first.
     pub const ALL: [Method; 7] = [
         Method::Default,
         Method::Mt,
@@ -42,6 +43,7 @@ impl Method {
         Method::F64x4,
     ];
 
+    /// The method's `--method` name (also its label in reports).
     pub fn name(self) -> &'static str {
         match self {
             Method::Default => "eplane+stable",
@@ -54,6 +56,7 @@ impl Method {
         }
     }
 
+    /// A one-line description: the triangle/quad and sphere methods, lanes and setup.
     pub fn describe(self) -> &'static str {
         match self {
             Method::Default => {
@@ -76,6 +79,7 @@ impl Method {
         }
     }
 
+    /// The method whose [`Method::name`] is `s`, or `None`.
     pub fn parse(s: &str) -> Option<Method> {
         Method::ALL.into_iter().find(|m| m.name() == s)
     }

@@ -34,26 +34,38 @@ pub const STRIP_ROWS: usize = TILE_H;
 /// along the unit ray (+inf for background).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Frame<D> {
+    /// Image width in pixels.
     pub width: usize,
+    /// Image height in pixels.
     pub height: usize,
+    /// Primitive id per pixel (-1: background), row-major, `width * height` entries.
     pub ids: Vec<i32>,
+    /// Hit distance `t` per pixel (+inf: background), parallel to `ids`.
     pub depth: Vec<D>,
 }
 
-impl<D: Copy> Frame<D> {
-    /// A frame of background: id -1 and depth `background` everywhere.
+impl<D: Copy + Send + Sync> Frame<D> {
+    /// A frame of background: id -1 and depth `background` everywhere. The buffers are filled
+    /// by the current rayon pool's threads, each writing (and so first touching) its own part
+    /// of the new allocation: no serial pass over the image before the render.
     pub fn new(width: usize, height: usize, background: D) -> Frame<D> {
+        let n = width * height;
+        let mut ids = Vec::with_capacity(n);
+        ids.par_extend(rayon::iter::repeat_n(-1, n));
+        let mut depth = Vec::with_capacity(n);
+        depth.par_extend(rayon::iter::repeat_n(background, n));
         Frame {
             width,
             height,
-            ids: vec![-1; width * height],
-            depth: vec![background; width * height],
+            ids,
+            depth,
         }
     }
 }
 
 /// What the packet kernel traces against: the SoA stores, and the BVH over them when the
-/// acceleration is `bvh` (the stores are then in the BVH's leaf order).
+/// acceleration is `bvh` (the stores are then in the BVH's leaf order) or the tile lists when
+/// it is `tiles`.
 #[derive(Debug, Clone)]
 pub struct PacketScene {
     packed: Packed,
@@ -242,8 +254,11 @@ pub enum Kernel {
 
 /// Everything a kernel needs before its first ray: the setup phase.
 pub enum Setup {
+    /// [`Kernel::Packet`]: the SoA stores (and acceleration), f32 ray tables padded to blocks.
     Packet(Box<PacketScene>, RayTables<f32>),
+    /// [`Kernel::ScalarF32`]: f32 constant records and f32 ray tables.
     ScalarF32(Prepared<f32>, RayTables<f32>),
+    /// [`Kernel::ScalarF64`]: f64 constant records and f64 ray tables (the oracle).
     ScalarF64(Prepared<f64>, RayTables<f64>),
 }
 

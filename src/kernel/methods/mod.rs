@@ -1,5 +1,5 @@
 //! Alternative intersection methods, measured against the default kernels (`kernel::polygon`,
-//! `kernel::sphere`) and the f64 oracle by the accuracy lab (`src/lab/`, `cargo bench --bench
+//! `kernel::sphere`) and the f64 oracle by the accuracy lab (lab/ crate, `cargo bench --bench
 //! lab`). One file per method family, each with its 1-lane form (`*_x1`, generic over
 //! [`Real`]: f32 and f64) and its 8-lane form (`*_x8`, `wide::f32x8`) side by side under a
 //! header: formula, source, assumptions, precision, where it fails, which test proves it.

@@ -35,11 +35,14 @@ use wide::f32x8;
 pub struct MtK<T> {
     /// V0 - eye.
     pub v0: V3<T>,
+    /// Edge e1 = V1 - V0.
     pub e1: V3<T>,
+    /// Edge e2 = V2 - V0.
     pub e2: V3<T>,
 }
 
 impl MtK<f64> {
+    /// Constants of triangle `v` (V0, V1, V2) seen from `eye`, in f64.
     pub fn new(v: &[DVec3; 3], eye: DVec3) -> MtK<f64> {
         MtK {
             v0: v3(v[0] - eye),
@@ -48,6 +51,7 @@ impl MtK<f64> {
         }
     }
 
+    /// The same constants rounded to `T`.
     pub fn cast<T: Real>(&self) -> MtK<T> {
         let r = |a: V3<f64>| a.map(T::from_f64);
         MtK {

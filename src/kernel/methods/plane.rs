@@ -40,6 +40,7 @@ pub struct PlaneK<T> {
 }
 
 impl PlaneK<f64> {
+    /// Constants of triangle `v` (A, B, C) seen from `eye`, in f64.
     pub fn new(v: &[DVec3; 3], eye: DVec3) -> PlaneK<f64> {
         let n = (v[1] - v[0]).cross(v[2] - v[0]).normalize();
         PlaneK {
@@ -50,6 +51,7 @@ impl PlaneK<f64> {
         }
     }
 
+    /// The same constants rounded to `T`.
     pub fn cast<T: Real>(&self) -> PlaneK<T> {
         let r = |a: V3<f64>| a.map(T::from_f64);
         PlaneK {

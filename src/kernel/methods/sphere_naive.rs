@@ -27,10 +27,12 @@ use wide::f32x8;
 pub struct NaiveK<T> {
     /// f = eye - centre.
     pub f: V3<T>,
+    /// radius^2.
     pub r2: T,
 }
 
 impl NaiveK<f64> {
+    /// Constants of the sphere (`center`, `radius`) seen from `eye`, in f64.
     pub fn new(center: DVec3, radius: f64, eye: DVec3) -> NaiveK<f64> {
         NaiveK {
             f: v3(eye - center),
@@ -38,6 +40,7 @@ impl NaiveK<f64> {
         }
     }
 
+    /// The same constants rounded to `T`.
     pub fn cast<T: Real>(&self) -> NaiveK<T> {
         NaiveK {
             f: self.f.map(T::from_f64),

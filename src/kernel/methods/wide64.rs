@@ -12,78 +12,28 @@
 //! `x8_equals_x1_*`).
 
 use crate::camera::RayTables;
-use crate::kernel::edge_eps;
-use crate::kernel::polygon::PolyK;
-use crate::kernel::sphere::SphereK;
+use crate::kernel::HitLanes;
+use crate::kernel::polygon::{PolyK, polygon_lanes};
+use crate::kernel::sphere::{SphereK, sphere_lanes};
 use wide::f64x4;
 
 /// Lanes per f64 packet.
 pub const LANES_F64: usize = 4;
 
-/// [`crate::kernel::polygon::polygon_x8`] in four f64 lanes.
+/// [`crate::kernel::polygon::polygon_x8`] in four f64 lanes: the one generic form.
 #[inline(always)]
 pub fn polygon_x4d<const N: usize>(k: &PolyK<f64, N>, d: &[f64x4; 3]) -> Option<(f64x4, f64x4)> {
-    // edge tests
-    let eps = f64x4::splat(-edge_eps::<f64>());
-    let side = |n: &[f64; 3]| {
-        f64x4::splat(n[0]) * d[0] + f64x4::splat(n[1]) * d[1] + f64x4::splat(n[2]) * d[2]
-    };
-    let mut inside = side(&k.n[0]).simd_ge(eps);
-    for n in &k.n[1..] {
-        if !inside.any() {
-            return None;
-        }
-        inside &= side(n).simd_ge(eps);
-    }
-    if !inside.any() {
-        return None;
-    }
-    // plane distance
-    Some((inside, f64x4::splat(k.p) / side(&k.nrm)))
+    polygon_lanes(k, d)
 }
 
-/// [`crate::kernel::sphere::sphere_x8`] in four f64 lanes.
+/// [`crate::kernel::sphere::sphere_x8`] in four f64 lanes: the one generic form.
 #[inline(always)]
 pub fn sphere_x4d(s: &SphereK<f64>, d: &[f64x4; 3]) -> Option<(f64x4, f64x4)> {
-    let oc = s.oc.map(f64x4::splat);
-    let b = oc[0] * d[0] + oc[1] * d[1] + oc[2] * d[2];
-    let l = [oc[0] - b * d[0], oc[1] - b * d[1], oc[2] - b * d[2]];
-    let disc = f64x4::splat(s.r2) - (l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
-    let meets = disc.simd_ge(f64x4::ZERO);
-    if !meets.any() {
-        return None;
-    }
-    let q = b + disc.sqrt();
-    let t = if s.inside { q } else { f64x4::splat(s.c) / q };
-    Some((meets, t))
+    sphere_lanes(s, d)
 }
 
 /// The nearest hits of four rays, ids as f64 (exact); the rule of `kernel::Hit8`.
-#[derive(Debug, Clone, Copy)]
-pub struct Hit4d {
-    pub t: f64x4,
-    pub id: f64x4,
-}
-
-impl Hit4d {
-    /// No hit yet in the `active` lanes; the others start at t = 0 and stay unchanged.
-    #[inline(always)]
-    pub fn new(active: f64x4) -> Hit4d {
-        Hit4d {
-            t: active.select(f64x4::splat(f64::INFINITY), f64x4::ZERO),
-            id: f64x4::splat(-1.0),
-        }
-    }
-
-    #[inline(always)]
-    pub fn update(&mut self, mask: f64x4, t: f64x4, id: f64) {
-        let id = f64x4::splat(id);
-        let wins = t.simd_lt(self.t) | (t.simd_eq(self.t) & id.simd_lt(self.id));
-        let take = mask & t.simd_gt(f64x4::ZERO) & wins;
-        self.t = take.select(t, self.t);
-        self.id = take.select(id, self.id);
-    }
-}
+pub type Hit4d = HitLanes<f64x4>;
 
 /// Four unit directions, lane by lane the operations of `RayTables::<f64>::dir_x1`.
 #[inline(always)]

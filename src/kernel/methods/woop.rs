@@ -42,16 +42,19 @@ use wide::f32x8;
 /// One triangle's vertices relative to the eye.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WoopK<T> {
+    /// A, B, C - eye.
     pub v: [V3<T>; 3],
 }
 
 impl WoopK<f64> {
+    /// Constants of triangle `v` (A, B, C) seen from `eye`, in f64.
     pub fn new(v: &[DVec3; 3], eye: DVec3) -> WoopK<f64> {
         WoopK {
             v: v.map(|p| v3(p - eye)),
         }
     }
 
+    /// The same constants rounded to `T`.
     pub fn cast<T: Real>(&self) -> WoopK<T> {
         WoopK {
             v: self.v.map(|a| a.map(T::from_f64)),
@@ -62,7 +65,9 @@ impl WoopK<f64> {
 /// One ray in ray space: axis permutation `k = [kx, ky, kz]` and shear `s = [Sx, Sy, Sz]`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WoopRay<T> {
+    /// Axis indices [kx, ky, kz]: kz the largest |d| component, kx and ky swapped if d_kz < 0.
     pub k: [usize; 3],
+    /// Shear [Sx, Sy, Sz] = [d_kx / d_kz, d_ky / d_kz, 1 / d_kz].
     pub s: [T; 3],
 }
 
@@ -140,9 +145,11 @@ pub fn woop_x1<T: Real>(k: &WoopK<T>, r: &WoopRay<T>) -> Option<T> {
 /// have the same one.
 #[derive(Debug, Clone, Copy)]
 pub struct WoopRay8 {
+    /// The permutation [kx, ky, kz] shared by all eight lanes, or `None` when they differ.
     pub uniform: Option<[usize; 3]>,
     /// Per lane, per role (kx, ky, kz): lane masks "axis is 0" and "axis is 1" (else 2).
     pub pick: [[f32x8; 2]; 3],
+    /// Per lane shear [Sx, Sy, Sz], as in [`WoopRay::s`].
     pub s: [f32x8; 3],
 }
 
