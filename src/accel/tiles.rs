@@ -107,12 +107,20 @@ struct Entry {
     rect: [u16; 4],
 }
 
-/// A primitive's screen footprint before binning.
-#[derive(Debug, Clone, Copy)]
-struct Footprint {
-    entry: Entry,
-    /// Tile rectangle, inclusive, or `None` when off screen.
-    tiles: Option<[u32; 4]>,
+/// The rectangle of a primitive that covers no pixel (x0 > x1): binned nowhere.
+const OFF_SCREEN: [u16; 4] = [1, 1, 0, 0];
+
+impl Entry {
+    /// The tiles the entry's rectangle touches, inclusive, or `None` when it is off screen.
+    fn tiles(&self) -> Option<[u32; 4]> {
+        let [x0, y0, x1, y1] = self.rect.map(u32::from);
+        (x0 <= x1).then_some([
+            x0 / TILE_W as u32,
+            y0 / TILE_H as u32,
+            x1 / TILE_W as u32,
+            y1 / TILE_H as u32,
+        ])
+    }
 }
 
 /// Per-tile lists of primitives, nearest first.
@@ -228,7 +236,7 @@ impl Tiles {
         let (w, h) = (camera.width as usize, camera.height as usize);
         let (cols, rows) = (w.div_ceil(TILE_W), h.div_ceil(TILE_H));
         let eye = camera.eye;
-        let footprint = |kind: u32, index: usize, id: f32| -> Footprint {
+        let footprint = |kind: u32, index: usize, id: f32| -> Entry {
             let shape = &scene.shapes[id as usize];
             let (rect, near) = match *shape {
                 crate::scene::Shape::Sphere { center, radius } => {
@@ -249,23 +257,14 @@ impl Tiles {
                 crate::scene::Shape::Triangle(v) => polygon_footprint(&screen, &v),
                 crate::scene::Shape::Quad(v) => polygon_footprint(&screen, &v),
             };
-            let entry = Entry {
+            Entry {
                 near: near_f32(near),
                 prim: kind << KIND_SHIFT | index as u32,
-                rect: rect.unwrap_or([0; 4]),
-            };
-            let tiles = rect.map(|[x0, y0, x1, y1]| {
-                [
-                    x0 as u32 / TILE_W as u32,
-                    y0 as u32 / TILE_H as u32,
-                    x1 as u32 / TILE_W as u32,
-                    y1 as u32 / TILE_H as u32,
-                ]
-            });
-            Footprint { entry, tiles }
+                rect: rect.unwrap_or(OFF_SCREEN),
+            }
         };
-        // Footprints of every primitive, in parallel.
-        let mut prints: Vec<Footprint> = Vec::new();
+        // Every primitive's entry (rectangle and near bound), in parallel.
+        let mut prints: Vec<Entry> = Vec::new();
         prints.par_extend(
             (0..packed.spheres.len())
                 .into_par_iter()
@@ -281,21 +280,18 @@ impl Tiles {
                 .into_par_iter()
                 .map(|i| footprint(QUAD, i, packed.quads.id[i])),
         );
-        let covered = |f: &Footprint| {
-            let [tx0, ty0, tx1, ty1] = f.tiles.expect("only on-screen footprints");
+        let covered = |e: &Entry| {
+            let [tx0, ty0, tx1, ty1] = e.tiles().unwrap_or([1, 1, 0, 0]);
             (ty0..=ty1)
                 .flat_map(move |ty| (tx0..=tx1).map(move |tx| ty as usize * cols + tx as usize))
         };
         // Counting sort: counts, prefix sum, scatter.
         let counts: Vec<AtomicU32> = (0..cols * rows).map(|_| AtomicU32::new(0)).collect();
-        prints
-            .par_iter()
-            .filter(|f| f.tiles.is_some())
-            .for_each(|f| {
-                for t in covered(f) {
-                    counts[t].fetch_add(1, Ordering::Relaxed);
-                }
-            });
+        prints.par_iter().for_each(|e| {
+            for t in covered(e) {
+                counts[t].fetch_add(1, Ordering::Relaxed);
+            }
+        });
         let mut start = Vec::with_capacity(cols * rows + 1);
         let mut sum = 0u32;
         start.push(0);
@@ -308,20 +304,17 @@ impl Tiles {
             .map(|&s| AtomicU32::new(s))
             .collect();
         let slots: Vec<AtomicU32> = (0..sum).map(|_| AtomicU32::new(0)).collect();
-        prints
-            .par_iter()
-            .enumerate()
-            .filter(|(_, f)| f.tiles.is_some())
-            .for_each(|(i, f)| {
-                for t in covered(f) {
-                    let at = cursor[t].fetch_add(1, Ordering::Relaxed);
-                    slots[at as usize].store(i as u32, Ordering::Relaxed);
-                }
-            });
+        prints.par_iter().enumerate().for_each(|(i, e)| {
+            for t in covered(e) {
+                let at = cursor[t].fetch_add(1, Ordering::Relaxed);
+                slots[at as usize].store(i as u32, Ordering::Relaxed);
+            }
+        });
         let mut entries: Vec<Entry> = slots
             .into_par_iter()
-            .map(|s| prints[s.into_inner() as usize].entry)
+            .map(|s| prints[s.into_inner() as usize])
             .collect();
+        drop(prints);
         // Each tile nearest first; ties by kind and index, so the order is deterministic.
         let mut lists: Vec<&mut [Entry]> = Vec::with_capacity(cols * rows);
         let mut rest = entries.as_mut_slice();

@@ -99,6 +99,8 @@ pub(crate) fn render_command(s: &RenderSettings) -> Result<()> {
         method,
     };
     let renderer = Renderer::new(&scene, &camera, &options)?;
+    // The renderer holds what it needs; the parsed shapes are not needed past setup.
+    drop(scene);
     stats.accel = renderer.accel().name();
     // The default method renders on the pool; the other methods on one thread.
     stats.threads = if renderer.is_parallel() {
