@@ -254,38 +254,45 @@ pub fn camera(c: &CameraSpec) -> Result<(), String> {
 /// by its line. Polygons with an area that underflows f32 are fine: their edge planes are
 /// normalised in f64 before rounding.
 pub fn f32_range(scene: &Scene) -> Result<(), Error> {
+    // Checked on all threads; `find_first` keeps "the first offending primitive" exact.
+    use rayon::prelude::*;
     let eye = scene.camera.eye;
-    let err = |i: usize, msg: String| Error::input(&scene.source, scene.lines[i], 0, msg);
+    let first = scene
+        .shapes
+        .par_iter()
+        .enumerate()
+        .map(|(i, shape)| (i, shape_f32(shape, eye)))
+        .find_first(|(_, r)| r.is_err());
+    match first {
+        Some((i, Err(msg))) => Err(Error::input(&scene.source, scene.lines[i], 0, msg)),
+        _ => Ok(()),
+    }
+}
+
+/// [`f32_range`]'s rules for one shape.
+fn shape_f32(shape: &Shape, eye: DVec3) -> Result<(), String> {
     // NaN (never expected: inputs are finite) counts as too far.
     let far = |d: f64| d.is_nan() || d > MAX_EYE_DISTANCE;
-    for (i, shape) in scene.shapes.iter().enumerate() {
-        match shape {
-            Shape::Sphere { center, radius } => {
-                if *radius < MIN_RADIUS {
-                    return Err(err(
-                        i,
-                        format!(
-                            "sphere radius {radius:e} is below the smallest supported radius \
-                             {MIN_RADIUS:e} (its square underflows f32)"
-                        ),
-                    ));
-                }
-                let d = (*center - eye).length() + radius;
-                if far(d) {
-                    return Err(err(
-                        i,
-                        format!(
-                            "sphere reaches {d:.3e} from the camera eye; the limit is \
-                             {MAX_EYE_DISTANCE:e} (f32 arithmetic would overflow)"
-                        ),
-                    ));
-                }
+    match shape {
+        Shape::Sphere { center, radius } => {
+            if *radius < MIN_RADIUS {
+                return Err(format!(
+                    "sphere radius {radius:e} is below the smallest supported radius \
+                     {MIN_RADIUS:e} (its square underflows f32)"
+                ));
             }
-            Shape::Triangle(v) => polygon_f32(v, eye, "triangle").map_err(|m| err(i, m))?,
-            Shape::Quad(v) => polygon_f32(v, eye, "quad").map_err(|m| err(i, m))?,
+            let d = (*center - eye).length() + radius;
+            if far(d) {
+                return Err(format!(
+                    "sphere reaches {d:.3e} from the camera eye; the limit is \
+                     {MAX_EYE_DISTANCE:e} (f32 arithmetic would overflow)"
+                ));
+            }
+            Ok(())
         }
+        Shape::Triangle(v) => polygon_f32(v, eye, "triangle"),
+        Shape::Quad(v) => polygon_f32(v, eye, "quad"),
     }
-    Ok(())
 }
 
 fn polygon_f32<const N: usize>(v: &[DVec3; N], eye: DVec3, kw: &str) -> Result<(), String> {
