@@ -114,7 +114,7 @@ fn bench_scene(
     g.warm_up_time(Duration::from_millis(300));
     g.measurement_time(Duration::from_secs(2));
     for &accel in accels {
-        let ps = PacketScene::new(scene, camera, accel);
+        let ps = PacketScene::new(scene, &camera, accel);
         g.bench_function(BenchmarkId::new(accel.name(), "t1"), |b| {
             b.iter(|| {
                 pool.install(|| black_box(render_packet(&ps, &tables, w as usize, h as usize)))
@@ -134,9 +134,9 @@ fn scaling(c: &mut Criterion) {
     for kind in ["spheres", "triangles"] {
         for &n in ns {
             let accels: &[Accel] = if n <= 4096 {
-                &[Accel::None, Accel::Bvh]
+                &[Accel::None, Accel::Tiles, Accel::Bvh]
             } else {
-                &[Accel::Bvh]
+                &[Accel::Tiles, Accel::Bvh]
             };
             bench_scene(
                 c,
@@ -164,7 +164,7 @@ fn meshes(c: &mut Criterion) {
             &format!("mesh/{name}/1920x1080"),
             &scene,
             (1920, 1080),
-            &[Accel::Bvh],
+            &[Accel::Tiles, Accel::Bvh],
         );
     }
 }

@@ -71,7 +71,8 @@ impl Bvh {
     }
 
     /// Depth of the deepest leaf (root = 1).
-    pub fn depth(&self) -> usize {
+    #[cfg(test)]
+    fn depth(&self) -> usize {
         fn walk(n: &[Node], i: usize) -> usize {
             if n[i].meta & LEAF != 0 {
                 1
@@ -148,4 +149,39 @@ fn enters(n: &Node, inv: &[f32x8; 3], best: f32x8) -> bool {
         .fast_min(y0.fast_max(y1))
         .fast_min(z0.fast_max(z1));
     (near.simd_le(far) & near.simd_le(best)).any()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{CameraSpec, Shape};
+
+    /// The traversal stack holds at most one node per level: the build's depth must stay
+    /// below `STACK`, here on 20,000 tiny triangles packed along a line (a skewed tree).
+    #[test]
+    fn depth_stays_below_the_traversal_stack() {
+        let shapes: Vec<Shape> = (0..20_000)
+            .map(|i| {
+                let x = (i as f64).powf(1.5) * 1e-3;
+                let v = DVec3::new(x, 0.0, -5.0);
+                Shape::Triangle([v, v + DVec3::X * 1e-3, v + DVec3::Y * 1e-3])
+            })
+            .collect();
+        let scene = Scene {
+            source: "line.sc".into(),
+            camera: CameraSpec {
+                eye: DVec3::ZERO,
+                look: DVec3::NEG_Z,
+                up: DVec3::Y,
+                fov_deg: None,
+            },
+            lines: vec![1; shapes.len()],
+            shapes,
+            warnings: Vec::new(),
+        };
+        let prepared = Prepared::new(&scene, DVec3::ZERO);
+        let (bvh, _) = Bvh::new(&prepared, &scene, DVec3::ZERO);
+        let depth = bvh.depth();
+        assert!(depth > 10 && depth < STACK, "depth {depth}");
+    }
 }

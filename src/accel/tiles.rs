@@ -533,7 +533,7 @@ mod tests {
                             };
                             let Some((mask, t)) = found else { continue };
                             let (m, t) = (mask.to_array()[0], t.to_array()[0]);
-                            if m == 0.0 || !(t > 0.0) {
+                            if m == 0.0 || t.is_nan() || t <= 0.0 {
                                 continue;
                             }
                             accepted += 1;
