@@ -9,11 +9,26 @@
 //!
 //! Degenerate triangles (zero area, as real scans contain) are kept, so that the ids of the
 //! others do not shift: they take their id and are never hit. The caller reports how many.
+//!
+//! # In parallel, with the answers of a sequential reader
+//!
+//! The file is read once into one buffer and cut at line ends into chunks that know the global
+//! number of their first line (`chunks.rs`, as for `.sc` files). Each chunk is read in parallel
+//! (`obj.rs`): its vertices, and its faces as the indices written. Whether an index is in range
+//! depends on the vertices before it, in earlier chunks too, so once every chunk is read the
+//! vertex and triangle counts are prefix-summed and every chunk is checked in parallel against
+//! them; the first error in file order wins, worded and numbered as reading line by line would.
+//! Then the vertices are joined into one list and the triangles built in parallel, in file
+//! order. A shared budget bounds what chunks hold to the triangle limit (see `parse.rs`).
 
+use super::chunks::{self, Budget, Chunk};
+use super::obj::{self, Base, Halt, ObjChunk, Stop};
 use crate::error::{Error, Result};
-use crate::limits::{MAX_LINE_BYTES, MAX_SCENE_BYTES};
+use crate::limits::MAX_SCENE_BYTES;
 use glam::DVec3;
+use rayon::prelude::*;
 use std::path::Path;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// The triangles of the OBJ file at `path`, in file order, and how many are degenerate.
 pub fn load_obj(path: &Path, max_triangles: usize) -> Result<(Vec<[DVec3; 3]>, usize)> {
@@ -27,7 +42,8 @@ pub fn load_obj(path: &Path, max_triangles: usize) -> Result<(Vec<[DVec3; 3]>, u
             ),
         });
     }
-    let bytes = std::fs::read(path).map_err(|e| Error::io(path, "read mesh", e))?;
+    let bytes =
+        chunks::read_file(path, MAX_SCENE_BYTES).map_err(|e| Error::io(path, "read mesh", e))?;
     parse_obj(&bytes, path, max_triangles)
 }
 
@@ -37,89 +53,106 @@ pub fn parse_obj(
     path: &Path,
     max_triangles: usize,
 ) -> Result<(Vec<[DVec3; 3]>, usize)> {
-    let mut verts: Vec<DVec3> = Vec::new();
-    let mut tris: Vec<[DVec3; 3]> = Vec::new();
-    let mut degenerate = 0;
-    let mut face: Vec<DVec3> = Vec::new();
-    for (i, raw) in bytes.split(|&b| b == b'\n').enumerate() {
-        let line_no = i + 1;
-        let err = |msg: String| Error::input(path, line_no, 0, msg);
-        if raw.len() > MAX_LINE_BYTES {
-            return Err(err(format!(
-                "line is {} bytes long; the limit is {MAX_LINE_BYTES}",
-                raw.len()
-            )));
-        }
-        let line = std::str::from_utf8(raw).map_err(|_| err("not valid UTF-8".into()))?;
-        let line = line.split('#').next().unwrap_or("").trim();
-        let mut toks = line.split_ascii_whitespace();
-        match toks.next() {
-            Some("v") => {
-                let mut c = [0.0; 3];
-                for (k, slot) in c.iter_mut().enumerate() {
-                    let t = toks
-                        .next()
-                        .ok_or_else(|| err(format!("vertex needs 3 coordinates, got {k}")))?;
-                    *slot =
-                        number(t).ok_or_else(|| err(format!("'{t}' is not a finite number")))?;
-                }
-                verts.push(DVec3::from_array(c));
-            }
-            Some("f") => {
-                face.clear();
-                for t in toks {
-                    let idx = t.split('/').next().unwrap_or("");
-                    let n: i64 = idx
-                        .parse()
-                        .map_err(|_| err(format!("'{t}' is not a vertex index")))?;
-                    let at = match n {
-                        n if n > 0 => n - 1,
-                        n if n < 0 => verts.len() as i64 + n,
-                        _ => return Err(err("vertex index 0 (OBJ indices start at 1)".into())),
-                    };
-                    let v = usize::try_from(at)
-                        .ok()
-                        .and_then(|a| verts.get(a))
-                        .ok_or_else(|| {
-                            err(format!(
-                                "vertex index {n} is out of range ({} vertices so far)",
-                                verts.len()
-                            ))
-                        })?;
-                    face.push(*v);
-                }
-                if face.len() < 3 {
-                    return Err(err(format!(
-                        "a face needs at least 3 vertices, got {}",
-                        face.len()
-                    )));
-                }
-                for k in 1..face.len() - 1 {
-                    let t = [face[0], face[k], face[k + 1]];
-                    if (t[1] - t[0]).cross(t[2] - t[0]).length_squared() == 0.0 {
-                        degenerate += 1;
-                    }
-                    tris.push(t);
-                }
-                if tris.len() > max_triangles {
-                    return Err(err(format!(
-                        "too many triangles: a scene holds at most {max_triangles} primitives"
-                    )));
-                }
-            }
-            _ => {}
-        }
-    }
-    Ok((tris, degenerate))
+    parse_chunked(bytes, path, max_triangles, chunks::chunk_bytes(bytes.len()))
 }
 
-/// A finite decimal number (no `inf`, `nan` or hex, which `f64::from_str` would take).
-fn number(t: &str) -> Option<f64> {
-    let ok = t
-        .bytes()
-        .all(|b| b.is_ascii_digit() || matches!(b, b'+' | b'-' | b'.' | b'e' | b'E'));
-    let v: f64 = t.parse().ok()?;
-    (ok && v.is_finite()).then_some(v)
+/// [`parse_obj`] with chunks of about `chunk_bytes`.
+pub(super) fn parse_chunked(
+    bytes: &[u8],
+    path: &Path,
+    max_triangles: usize,
+    chunk_bytes: usize,
+) -> Result<(Vec<[DVec3; 3]>, usize)> {
+    let parts = chunks::split(bytes, chunk_bytes);
+    let read =
+        |c: &Chunk, budget: &Budget| obj::read(&bytes[c.range.clone()], c.first_line, path, budget);
+    let budget = Budget::new(max_triangles);
+    let chunks: Vec<ObjChunk> = parts.par_iter().map(|c| read(c, &budget)).collect();
+    let line = match finish(chunks, path, max_triangles) {
+        Ok(mesh) => return Ok(mesh),
+        Err(Halt::Error(e)) => return Err(e),
+        Err(Halt::Rerun(_)) => {
+            // The budget ran out out of order: once more, one chunk after the other.
+            let budget = Budget::new(max_triangles);
+            let mut chunks = Vec::new();
+            for c in &parts {
+                let chunk = read(c, &budget);
+                let stopped = chunk.stop.is_some();
+                chunks.push(chunk);
+                if stopped {
+                    break;
+                }
+            }
+            match finish(chunks, path, max_triangles) {
+                Ok(mesh) => return Ok(mesh),
+                Err(Halt::Error(e)) => return Err(e),
+                // In order, the budget runs out only past the limit, which `obj::check` finds.
+                Err(Halt::Rerun(line)) => line,
+            }
+        }
+    };
+    let msg = format!("too many triangles: a scene holds at most {max_triangles} primitives");
+    Err(Error::input(path, line, 0, msg))
+}
+
+/// The chunks, read, joined in file order: every chunk checked in parallel (the first error in
+/// file order wins), every vertex in one list, then the triangles built in parallel, each
+/// written once, straight into the final list.
+fn finish(
+    mut chunks: Vec<ObjChunk>,
+    path: &Path,
+    max: usize,
+) -> std::result::Result<(Vec<[DVec3; 3]>, usize), Halt> {
+    // nothing after the first chunk that stopped matters
+    if let Some(k) = chunks.iter().position(|c| c.stop.is_some()) {
+        chunks.truncate(k + 1);
+    }
+    let mut bases = Vec::with_capacity(chunks.len());
+    let (mut verts, mut tris) = (0, 0);
+    for c in &chunks {
+        bases.push(Base { verts, tris });
+        verts += c.verts.len();
+        tris += c.tris;
+    }
+    let stops: Vec<Option<Stop>> = chunks.iter_mut().map(|c| c.stop.take()).collect();
+    let checked: Vec<_> = (chunks.par_iter().zip(stops).zip(&bases))
+        .map(|((c, stop), &base)| obj::check(c, stop, base, max, path))
+        .collect();
+    checked
+        .into_iter()
+        .collect::<std::result::Result<(), Halt>>()?;
+    // past the checks, every index is in range and there are at most `max` triangles
+    let lens: Vec<usize> = chunks.iter().map(|c| c.verts.len()).collect();
+    let verts: Vec<DVec3> = chunks::gather(&lens, |p, j| chunks[p].verts[j]).collect();
+    if chunks.iter().all(ObjChunk::triangles_only) {
+        let zero = AtomicUsize::new(0);
+        let lens: Vec<usize> = chunks.iter().map(|c| c.tris).collect();
+        let tris = chunks::gather(&lens, |p, j| {
+            let t = obj::triangle(&chunks[p], j, bases[p], &verts);
+            if obj::degenerate(&t) {
+                zero.fetch_add(1, Ordering::Relaxed);
+            }
+            t
+        });
+        let tris = tris.collect();
+        return Ok((tris, zero.into_inner()));
+    }
+    // polygons: chunk j's triangles fill slice j of a zeroed list
+    let mut out: Vec<[DVec3; 3]> = (0..tris)
+        .into_par_iter()
+        .map(|_| [DVec3::ZERO; 3])
+        .collect();
+    let mut slices = Vec::with_capacity(chunks.len());
+    let mut rest = out.as_mut_slice();
+    for c in &chunks {
+        let (mine, after) = rest.split_at_mut(c.tris);
+        slices.push(mine);
+        rest = after;
+    }
+    let zero: usize = (chunks.par_iter().zip(&bases).zip(slices))
+        .map(|((c, &base), slice)| obj::write(c, base, &verts, slice))
+        .sum();
+    Ok((out, zero))
 }
 
 #[cfg(test)]

@@ -4,8 +4,15 @@
 //! lines of the file, whatever its type. Parsing (`parse.rs`) turns text into this form;
 //! validation (`validate.rs`) holds the geometric rules and their tolerances.
 
+#[cfg(test)]
+mod chunk_tests;
+mod chunks;
 pub mod mesh;
+mod number;
+mod obj;
 pub mod parse;
+mod scene_chunk;
+mod statement;
 pub mod validate;
 
 use glam::DVec3;
@@ -34,8 +41,11 @@ pub fn parse_scene(text: &str, file: &Path) -> Result<Scene> {
 /// The `camera` statement, unvalidated values as written (validated by `validate::camera`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CameraSpec {
+    /// Eye position: the origin of every ray.
     pub eye: DVec3,
+    /// A point the camera looks at (the centre of the image).
     pub look: DVec3,
+    /// Up direction, any length; need not be perpendicular to the view direction.
     pub up: DVec3,
     /// Horizontal field of view in degrees, when the scene gives one.
     pub fov_deg: Option<f64>,
@@ -44,10 +54,14 @@ pub struct CameraSpec {
 /// One primitive, in the scene's own f64 coordinates.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Shape {
+    /// A sphere (`sphere CX CY CZ RADIUS`).
     Sphere {
+        /// Centre.
         center: DVec3,
+        /// Radius (positive in a validated scene).
         radius: f64,
     },
+    /// A triangle with vertices A, B, C (`triangle` lines and mesh faces).
     Triangle([DVec3; 3]),
     /// A planar convex quad, vertices in perimeter order: the union of (A,B,C) and (A,C,D).
     Quad([DVec3; 4]),
@@ -58,7 +72,9 @@ pub enum Shape {
 pub struct Scene {
     /// Where the scene came from, for messages.
     pub source: PathBuf,
+    /// The scene's `camera` statement.
     pub camera: CameraSpec,
+    /// Every primitive in file order (meshes expanded in place); the index is the id.
     pub shapes: Vec<Shape>,
     /// 1-based source line of each shape, for messages (same length as `shapes`): a mesh's
     /// triangles all carry the line of their `mesh` statement.
