@@ -1,7 +1,7 @@
 //! `lanecast compare`: prints the packet-against-oracle report, writes the diff image, fails
 //! past the tolerance. The comparison itself is the library's (`crate::compare`).
 
-use super::{load_view, pool};
+use super::load_view;
 use crate::cli::CompareSettings;
 use crate::compare::{
     EDGE_BAND, Report, TIE_REL, class_colour, compare_method, compare_with, marked_render,
@@ -29,10 +29,10 @@ pub(crate) fn compare_command(s: &CompareSettings) -> Result<()> {
     }
     let (scene, camera) = load_view(&s.view)?;
     let method = s.view.method;
-    let (report, oracle) = pool(s.view.threads)?.install(|| match method {
+    let (report, oracle) = match method {
         Method::Default => compare_with(&scene, &camera, s.view.accel),
         m => compare_method(&scene, &camera, m),
-    });
+    };
     let r = &report;
     let ppm = |n: usize| n as f64 * 1e6 / r.pixels.max(1) as f64;
     println!("scene       {}", s.view.input.display());

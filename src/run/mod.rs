@@ -17,8 +17,9 @@ pub(crate) fn command(cmd: Command) -> Result<()> {
             print!("{text}");
             Ok(())
         }
-        Command::Render(s) => render::render_command(&s),
-        Command::Compare(s) => compare::compare_command(&s),
+        // Every phase (parse, setup, render, shade) runs on the pool `--threads` asks for.
+        Command::Render(s) => pool(s.view.threads)?.install(|| render::render_command(&s)),
+        Command::Compare(s) => pool(s.view.threads)?.install(|| compare::compare_command(&s)),
     }
 }
 

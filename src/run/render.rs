@@ -1,6 +1,6 @@
 //! The render command, phase by phase: parse, setup, render, shade, write.
 
-use super::{load_view, pool};
+use super::load_view;
 use crate::cli::{KernelArg, RenderSettings};
 use crate::error::{Error, Result};
 use crate::limits::{BYTES_PER_PIXEL, MAX_PIXELS};
@@ -84,7 +84,6 @@ pub(crate) fn render_command(s: &RenderSettings) -> Result<()> {
     stats.primitives = scene.counts();
     lap("parse", &mut stats, &mut clock);
 
-    let pool = pool(s.view.threads)?;
     let method = s.view.method;
     if method != Method::Default && s.kernel != KernelArg::Simd {
         return Err(Error::usage(format!(
@@ -104,7 +103,7 @@ pub(crate) fn render_command(s: &RenderSettings) -> Result<()> {
     stats.accel = renderer.accel().name();
     // The default method renders on the pool; the other methods on one thread.
     stats.threads = if renderer.is_parallel() {
-        pool.current_num_threads()
+        rayon::current_num_threads()
     } else {
         1
     };
@@ -116,7 +115,7 @@ pub(crate) fn render_command(s: &RenderSettings) -> Result<()> {
     for _ in 0..s.repeat {
         let start = Instant::now();
         frame = Some(progress::with_progress(renderer.work_units(), |done| {
-            pool.install(|| renderer.render_counting(Some(done)))
+            renderer.render_counting(Some(done))
         }));
         stats.renders.push(secs(start.elapsed()));
     }
@@ -124,16 +123,14 @@ pub(crate) fn render_command(s: &RenderSettings) -> Result<()> {
     stats.phases.push(("render", stats.render_best()));
     clock = Instant::now();
 
-    let rgb = pool.install(|| {
-        shade(
-            &frame.ids,
-            &frame.depth,
-            w,
-            s.color_mode,
-            s.variation,
-            s.seed,
-        )
-    });
+    let rgb = shade(
+        &frame.ids,
+        &frame.depth,
+        w,
+        s.color_mode,
+        s.variation,
+        s.seed,
+    );
     lap("shade", &mut stats, &mut clock);
 
     output::write_image(&s.output, s.view.width, s.view.height, &rgb)?;
