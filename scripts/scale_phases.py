@@ -33,13 +33,16 @@ import json
 import math
 import os
 import pathlib
-import shutil
 import statistics
 import subprocess
 import sys
 import tempfile
 import time
 import xml.etree.ElementTree as ET
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+import vs_embree  # noqa: E402  (the shared build step, sh() and cpu())
+from vs_embree import cpu, sh  # noqa: E402
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 SHARED = ROOT.parent / "shared" / "anchors"
@@ -57,22 +60,9 @@ SPEEDUP_1T_2T_MIN = 1.7
 BYTES_PER_TRI_MAX = 150
 
 
-def sh(cmd, **kw):
-    return subprocess.run(cmd, check=True, capture_output=True, text=True, **kw)
-
-
 def build(ns, levels):
-    if not SHARED.is_dir():
-        sys.exit(f"{SHARED} is missing: this comparison needs the shared Embree anchor")
-    dst = ROOT / "target" / "embree"
-    dst.mkdir(parents=True, exist_ok=True)
-    for f in ["build.sh", "embree_cast.cpp"]:
-        shutil.copy(SHARED / "embree" / f, dst / f)
-    sh(["bash", str(dst / "build.sh")])
-    sh(["cargo", "build", "--release"], cwd=ROOT)
-    SCALE.mkdir(parents=True, exist_ok=True)
-    if not all((SCALE / f"{k}_{n}.sc").exists() for k in ("spheres", "triangles") for n in ns):
-        sh([sys.executable, str(SHARED / "gen_scenes.py"), "--out", str(SCALE)])
+    # vs_embree.build: the Embree caster, lanecast, the shared scaling scenes
+    vs_embree.build()
     for level in levels:
         obj = SCALE / f"armadillo_{level}.obj"
         if not obj.exists():
@@ -161,11 +151,6 @@ def measure(name, kind, scene, threads, rounds, tmp):
             "errors": errors}
 
 
-def cpu():
-    for line in open("/proc/cpuinfo"):
-        if line.startswith("model name"):
-            return line.split(":", 1)[1].strip()
-    return "unknown CPU"
 
 
 def f3(v):
