@@ -187,7 +187,8 @@ mod tests {
         ] {
             assert!(j.contains(&format!("\"{key}\"")), "{key}");
         }
-        assert!(j.contains("\"render_best_s\": 2e-3"), "{j}");
-        assert_eq!(j.matches('{').count(), j.matches('}').count());
+        let v: serde_json::Value = serde_json::from_str(&j).expect("valid JSON");
+        assert_eq!(v["render_best_s"].as_f64(), Some(2e-3), "{j}");
+        assert_eq!(v["scene"], "a \"q\".sc");
     }
 }
