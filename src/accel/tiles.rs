@@ -67,7 +67,7 @@ use std::sync::atomic::{AtomicU32, Ordering};
 use wide::f32x8;
 
 /// Tile width in pixels: two packets of 4x2. Measured against 16 and 32 (README, "Acceleration"):
-/// the same on the seed scenes, 10-25% faster from 65,536 primitives on.
+/// the same on the seed scenes, 15-35% faster at 65,536 primitives.
 pub const TILE_W: usize = 8;
 /// Tile height in pixels: the renderer's strip height, so a strip is one row of tiles.
 pub const TILE_H: usize = 8;
