@@ -14,8 +14,8 @@
 //! `auto` picks `tiles` from [`AUTO_MIN`] primitives on, `none` below. Measured (README
 //! "Acceleration", `scripts/accel_table.py`, 1 thread, 1920x1080): with one primitive (scene7)
 //! any structure is overhead; from two on, `tiles` renders every measured scene faster than
-//! `bvh` (1.7x to 6.8x), and its setup is parallel and, from thousands of primitives on, faster
-//! (3.3M triangles on 2 threads: 0.68 s against 5.4 s). The BVH stays for `--accel bvh`: it
+//! `bvh` (1.8x to 6.8x), and its setup is parallel and faster from tens of thousands of
+//! primitives on (3.3M triangles on 2 threads: 0.68 s against 5.4 s). The BVH stays for `--accel bvh`: it
 //! renders dense meshes of millions of triangles faster once built (92 against 148 ms there),
 //! which pays only for many renders of one setup.
 
