@@ -31,9 +31,10 @@
 //! kernels, the same (t, id) minimum, and every entry that could win is tested.
 //!
 //! `near` (f64, less a relative margin, rounded down to f32), u = 2^-24:
-//! - polygon, by its plane: `p`, the distance from the eye to its plane. The kernel's
-//!   `t = p' / (d . N')` with `|d . N'| <= 1 + 4u` (unit vectors, rounded) and
-//!   `p' >= p (1 - u)`, so any returned `t >= p (1 - 5u)` at any angle of incidence.
+//! - polygon, by its plane: `p`, the kernel's own f32 distance from the eye to the polygon's
+//!   plane (read from the packed store, not recomputed). The kernel returns
+//!   `t = p / (d . N')` with `|d . N'| <= 1 + 4u` (unit vectors, rounded), so any returned
+//!   `t >= p (1 - 5u)` at any angle of incidence; lanecast takes `p (1 - 8u)`.
 //! - polygon, by its distance: `D`, the distance from the eye to the polygon (its closest point,
 //!   Ericson's triangle test), is a far tighter bound for a mesh, whose planes often pass near
 //!   the eye. A ray the kernel accepts meets the plane at most `a t / c` outside the polygon
@@ -254,8 +255,12 @@ impl Tiles {
                     };
                     (rect, (dist - radius).max(0.0) * (1.0 - SPHERE_MARGIN))
                 }
-                crate::scene::Shape::Triangle(v) => polygon_footprint(&screen, &v),
-                crate::scene::Shape::Quad(v) => polygon_footprint(&screen, &v),
+                crate::scene::Shape::Triangle(v) => {
+                    polygon_footprint(&screen, &v, packed.triangles.p[index])
+                }
+                crate::scene::Shape::Quad(v) => {
+                    polygon_footprint(&screen, &v, packed.quads.p[index])
+                }
             };
             Entry {
                 near: near_f32(near),
@@ -380,18 +385,15 @@ fn lanes_max(v: f32x8) -> f32 {
 }
 
 /// The rectangle and `near` of a convex polygon (see the module comment).
-fn polygon_footprint<const N: usize>(screen: &Screen, v: &[DVec3; N]) -> (Option<[u16; 4]>, f64) {
+/// `p` is the kernel's own plane distance (the f32 constant of its packed store).
+fn polygon_footprint<const N: usize>(
+    screen: &Screen,
+    v: &[DVec3; N],
+    p: f32,
+) -> (Option<[u16; 4]>, f64) {
     let q = v.map(|p| p - screen.eye);
     let rect = screen.rect(q.iter().copied());
-    // p: distance from the eye to the polygon's plane (the kernel's p before rounding).
-    let n = match N {
-        3 => (q[1] - q[0]).cross(q[2] - q[0]),
-        _ => (q[2] - q[0]).cross(q[3] - q[1]),
-    };
-    let Some(n) = n.try_normalize() else {
-        return (rect, 0.0);
-    };
-    let p = q.iter().map(|v| v.dot(n)).sum::<f64>().abs() / N as f64;
+    let p = p as f64;
     // D: distance from the eye to the polygon (a quad as triangles ABC and ACD), degraded by
     // the grazing factor k = dmax / p (module comment); the plane bound holds at any angle.
     let d = (1..N - 1)
