@@ -16,7 +16,6 @@
 //! perform the same operations in the same order, so in f32 they give bit-identical rays.
 
 use crate::error::{Error, Result};
-use crate::limits::{MAX_PIXELS, MAX_SIDE};
 use crate::real::{Real, V3, dot, v3};
 use crate::scene::{CameraSpec, Scene};
 use glam::DVec3;
@@ -66,16 +65,8 @@ impl Camera {
         height: u32,
         fov_deg: Option<f64>,
     ) -> Result<Camera> {
-        if width == 0 || height == 0 || width > MAX_SIDE || height > MAX_SIDE {
-            return Err(Error::usage(format!(
-                "image size {width}x{height}: each side must be 1 to {MAX_SIDE} pixels"
-            )));
-        }
-        if width as u64 * height as u64 > MAX_PIXELS {
-            return Err(Error::usage(format!(
-                "image size {width}x{height}: at most {MAX_PIXELS} pixels per image"
-            )));
-        }
+        crate::limits::check_size(width as u64, height as u64)
+            .map_err(|why| Error::usage(format!("image size {width}x{height}: {why}")))?;
         let fov = fov_deg.or(scene.camera.fov_deg).unwrap_or(DEFAULT_FOV);
         crate::scene::validate::fov(fov)
             .map_err(|m| Error::usage(format!("field of view {fov}: {m}")))?;

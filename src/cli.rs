@@ -321,28 +321,21 @@ fn method(name: &str, precision: &str) -> Result<crate::render::Method> {
 
 /// `WIDTHxHEIGHT` within `limits::MAX_SIDE` and `limits::MAX_PIXELS`.
 pub fn parse_size(s: &str) -> Result<(u32, u32)> {
-    use crate::limits::{MAX_PIXELS, MAX_SIDE};
     let bad = |why: &str| Error::usage(format!("--size {s}: {why}"));
     let (w, h) = s
         .split_once(['x', 'X'])
         .ok_or_else(|| bad("expected WIDTHxHEIGHT, e.g. 800x600"))?;
-    let side = |v: &str| -> Result<u32> {
+    let side = |v: &str| -> Result<u64> {
         let n: u64 = v
             .parse()
             .map_err(|_| bad("width and height must be whole numbers"))?;
-        if n == 0 {
-            return Err(bad("width and height must be at least 1"));
-        }
-        if n > MAX_SIDE as u64 {
-            return Err(bad(&format!("a side may be at most {MAX_SIDE} pixels")));
-        }
-        Ok(n as u32)
+        // each side alone first, so a bad width is named before the product is checked
+        crate::limits::check_size(n, 1).map_err(|why| bad(&why))?;
+        Ok(n)
     };
     let (w, h) = (side(w)?, side(h)?);
-    if w as u64 * h as u64 > MAX_PIXELS {
-        return Err(bad(&format!("at most {MAX_PIXELS} pixels per image")));
-    }
-    Ok((w, h))
+    crate::limits::check_size(w, h).map_err(|why| bad(&why))?;
+    Ok((w as u32, h as u32))
 }
 
 #[cfg(test)]

@@ -5,6 +5,22 @@
 pub const MAX_SIDE: u32 = 65_536;
 /// Most pixels in one image (16384 x 16384). A render needs about `BYTES_PER_PIXEL` per pixel.
 pub const MAX_PIXELS: u64 = 1 << 28;
+/// The image-size rules, in one place: each side 1 to [`MAX_SIDE`], at most [`MAX_PIXELS`] in
+/// all. The reason, when refused, for the caller to prefix with what it checked (`--size 0x5`,
+/// or `image size 0x5`).
+pub fn check_size(width: u64, height: u64) -> Result<(), String> {
+    if width == 0 || height == 0 {
+        return Err("width and height must be at least 1".into());
+    }
+    if width > MAX_SIDE as u64 || height > MAX_SIDE as u64 {
+        return Err(format!("a side may be at most {MAX_SIDE} pixels"));
+    }
+    if width * height > MAX_PIXELS {
+        return Err(format!("at most {MAX_PIXELS} pixels per image"));
+    }
+    Ok(())
+}
+
 /// Working memory per pixel: id (4) + depth (4) + RGB (3) + encoder slack (1).
 pub const BYTES_PER_PIXEL: u64 = 12;
 /// Most primitives in one scene (ids are i32 in the `.npy` buffers; 2^24 keeps every id exact
