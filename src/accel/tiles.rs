@@ -59,6 +59,9 @@
 
 use crate::camera::Camera;
 use crate::kernel::Hit8;
+use crate::kernel::packet::{BLOCK_H, BLOCK_W};
+use crate::kernel::polygon::polygon_lanes_all;
+#[cfg(test)]
 use crate::kernel::polygon::polygon_x8;
 use crate::kernel::sphere::sphere_x8;
 use crate::soa::Packed;
@@ -354,34 +357,108 @@ impl Tiles {
         d: &[f32x8; 3],
         hit: &mut Hit8,
     ) {
-        let mut far = lanes_max(hit.t);
         for e in self.list(tx, ty) {
             // every active lane has a hit nearer than anything left in the list
-            if far < e.near {
+            if !hit.t.simd_ge(f32x8::splat(e.near)).any() {
                 return;
             }
             let [rx0, ry0, rx1, ry1] = e.rect.map(|v| v as usize);
             if bx1 < rx0 || x0 > rx1 || by1 < ry0 || y0 > ry1 {
                 continue;
             }
-            let i = (e.prim & INDEX_MASK) as usize;
-            let found = match e.prim >> KIND_SHIFT {
-                SPHERE => sphere_x8(&p.spheres.get(i), d).map(|m| (m, p.spheres.id[i])),
-                TRIANGLE => polygon_x8(&p.triangles.get(i), d).map(|m| (m, p.triangles.id[i])),
-                _ => polygon_x8(&p.quads.get(i), d).map(|m| (m, p.quads.id[i])),
-            };
-            if let Some(((mask, t), id)) = found {
-                hit.update(mask, t, id);
-                far = lanes_max(hit.t);
+            test_entry(p, e, d, hit);
+        }
+    }
+
+    /// Splits tile (tx, ty)'s list into its eight 4x2 packets' lists (`PACKETS_X` columns,
+    /// `PACKETS_Y` rows, packet `k` at column `k % 2`, row `k / 2`), keeping the nearest-first
+    /// order: each packet then walks only the entries whose rectangles reach it, with no test
+    /// per entry (measured: README, "Acceleration").
+    #[inline]
+    pub fn split_tile(&self, (tx, ty): (usize, usize), lists: &mut PacketLists) {
+        let list = self.list(tx, ty);
+        let n = list.len();
+        lists.tile = (tx, ty);
+        lists.len = [0; PACKETS];
+        lists.stride = n;
+        if lists.index.len() < PACKETS * n {
+            lists.index.resize(PACKETS * n, 0);
+        }
+        let (ox, oy) = (tx * TILE_W, ty * TILE_H);
+        for (i, e) in list.iter().enumerate() {
+            // A listed rectangle overlaps the tile: clamp it to the tile, in packets.
+            let [x0, y0, x1, y1] = e.rect.map(|v| v as usize);
+            let cx0 = x0.saturating_sub(ox).min(TILE_W - 1) / BLOCK_W;
+            let cx1 = (x1 - ox).min(TILE_W - 1) / BLOCK_W;
+            let ry0 = y0.saturating_sub(oy).min(TILE_H - 1) / BLOCK_H;
+            let ry1 = (y1 - oy).min(TILE_H - 1) / BLOCK_H;
+            // columns cx0..=cx1 (bits of a row), repeated for rows ry0..=ry1 (2 bits a row)
+            let cols = (1u32 << (cx1 + 1)) - (1 << cx0);
+            let rows = ((1u32 << (2 * ry1 + 2)) - (1 << (2 * ry0))) / 3;
+            let mask = cols * rows;
+            for k in 0..PACKETS {
+                lists.index[k * n + lists.len[k]] = i as u32;
+                lists.len[k] += (mask >> k & 1) as usize;
             }
+        }
+    }
+
+    /// Nearest hits of the eight rays `d` of packet `k` of the tile `lists` was split for
+    /// ([`Tiles::split_tile`]): that packet's entries, nearest first, left once no entry can win.
+    #[inline]
+    pub fn trace_packet_x8(
+        &self,
+        p: &Packed,
+        lists: &PacketLists,
+        k: usize,
+        d: &[f32x8; 3],
+        hit: &mut Hit8,
+    ) {
+        let list = self.list(lists.tile.0, lists.tile.1);
+        for &i in &lists.index[k * lists.stride..][..lists.len[k]] {
+            let e = &list[i as usize];
+            if !hit.t.simd_ge(f32x8::splat(e.near)).any() {
+                return;
+            }
+            test_entry(p, e, d, hit);
         }
     }
 }
 
-/// The largest of the eight lanes (hit distances: never NaN, inactive lanes 0).
+/// Packets per tile: 4x2 blocks of the packet kernel.
+pub const PACKETS: usize = (TILE_W / BLOCK_W) * (TILE_H / BLOCK_H);
+
+/// One tile's list split per packet ([`Tiles::split_tile`]); reused from tile to tile.
+#[derive(Debug, Clone, Default)]
+pub struct PacketLists {
+    tile: (usize, usize),
+    /// Packet k's entries (indices into the tile's list) are `index[k * stride..][..len[k]]`.
+    index: Vec<u32>,
+    stride: usize,
+    len: [usize; PACKETS],
+}
+
+/// Tests entry `e` against the rays `d`, keeping the nearest hits in `hit`. Polygons without
+/// early exit (see `polygon_lanes_all`); spheres leave early where no lane meets them (their
+/// square root and division cost more than a mispredicted branch).
 #[inline(always)]
-fn lanes_max(v: f32x8) -> f32 {
-    v.to_array().into_iter().fold(0.0, f32::max)
+fn test_entry(p: &Packed, e: &Entry, d: &[f32x8; 3], hit: &mut Hit8) {
+    let i = (e.prim & INDEX_MASK) as usize;
+    match e.prim >> KIND_SHIFT {
+        SPHERE => {
+            if let Some((mask, t)) = sphere_x8(&p.spheres.get(i), d) {
+                hit.update(mask, t, p.spheres.id[i]);
+            }
+        }
+        TRIANGLE => {
+            let (mask, t) = polygon_lanes_all(&p.triangles.get(i), d);
+            hit.update(mask, t, p.triangles.id[i]);
+        }
+        _ => {
+            let (mask, t) = polygon_lanes_all(&p.quads.get(i), d);
+            hit.update(mask, t, p.quads.id[i]);
+        }
+    }
 }
 
 /// The rectangle and `near` of a convex polygon (see the module comment).
@@ -559,5 +636,45 @@ mod tests {
                 "seed {seed}: the scene must be seen ({accepted})"
             );
         }
+    }
+
+    /// `split_tile` gives each packet exactly the tile's entries whose rectangles reach that
+    /// packet's pixels, in the tile's (nearest-first) order, for every tile including the
+    /// partial ones at the right and bottom borders.
+    #[test]
+    fn split_tile_keeps_exactly_the_entries_reaching_each_packet() {
+        let eye = DVec3::new(0.3, 0.2, 1.0);
+        let scene = scene(4, eye, DVec3::new(0.0, 0.0, -3.0), 70.0);
+        let (w, h): (usize, usize) = (101, 45);
+        let camera = Camera::new(&scene.camera, 70.0, w as u32, h as u32);
+        let packed = Packed::new(&Prepared::new(&scene, eye));
+        let tiles = Tiles::new(&scene, &packed, &camera);
+        let mut lists = PacketLists::default();
+        let (mut kept, mut left) = (0, 0);
+        for ty in 0..h.div_ceil(TILE_H) {
+            for tx in 0..w.div_ceil(TILE_W) {
+                tiles.split_tile((tx, ty), &mut lists);
+                let list = tiles.list(tx, ty);
+                for k in 0..PACKETS {
+                    let x0 = tx * TILE_W + k % (TILE_W / BLOCK_W) * BLOCK_W;
+                    let y0 = ty * TILE_H + k / (TILE_W / BLOCK_W) * BLOCK_H;
+                    let (x1, y1) = (x0 + BLOCK_W - 1, y0 + BLOCK_H - 1);
+                    let want: Vec<u32> = (0..list.len() as u32)
+                        .filter(|&i| {
+                            let [rx0, ry0, rx1, ry1] = list[i as usize].rect.map(usize::from);
+                            rx0 <= x1 && x0 <= rx1 && ry0 <= y1 && y0 <= ry1
+                        })
+                        .collect();
+                    let got = &lists.index[k * lists.stride..][..lists.len[k]];
+                    assert_eq!(got, &want[..], "tile ({tx}, {ty}) packet {k}");
+                    kept += want.len();
+                    left += list.len() - want.len();
+                }
+            }
+        }
+        assert!(
+            kept > 1000 && left > 1000,
+            "both cases occur: {kept} kept, {left} left out"
+        );
     }
 }

@@ -14,7 +14,7 @@ pub mod method;
 
 pub use method::Method;
 
-use crate::accel::tiles::{TILE_H, TILE_W};
+use crate::accel::tiles::{PacketLists, TILE_H, TILE_W};
 use crate::accel::{Accel, Bvh, Tiles, bvh::trace_bvh_x8};
 use crate::camera::RayTables;
 use crate::kernel::packet::{BLOCK_H, BLOCK_W, block_rays, trace_x8};
@@ -180,25 +180,56 @@ pub fn render_packet_blocks<const BW: usize>(
     progress: Option<&AtomicUsize>,
 ) -> Frame<f32> {
     let mut frame = Frame::new(width, height, f32::INFINITY);
-    for_each_strip(&mut frame, progress, |y_start, ids, depth| {
+    // Writes a block's results into its strip (`by`: the block's first row in the strip).
+    let store = |ids: &mut [i32], depth: &mut [f32], bx: usize, by: usize, hit: &Hit8| {
         let rows = ids.len() / width;
-        for by in (0..rows).step_by(LANES / BW) {
-            for bx in (0..width).step_by(BW) {
-                let (d, active) = block_rays::<BW>(tables, bx, y_start + by, width, height);
-                let mut hit = Hit8::new(active);
-                let y = y_start + by;
-                p.trace_x8([bx, y, bx + BW - 1, y + LANES / BW - 1], &d, &mut hit);
-                let (t, id) = (hit.t.to_array(), hit.id.to_array());
-                for lane in 0..LANES {
-                    let (x, y) = (bx + lane % BW, by + lane / BW);
-                    if x < width && y < rows {
-                        ids[y * width + x] = id[lane] as i32;
-                        depth[y * width + x] = t[lane];
-                    }
-                }
+        let (t, id) = (hit.t.to_array(), hit.id.to_array());
+        for lane in 0..LANES {
+            let (x, y) = (bx + lane % BW, by + lane / BW);
+            if x < width && y < rows {
+                ids[y * width + x] = id[lane] as i32;
+                depth[y * width + x] = t[lane];
             }
         }
-    });
+    };
+    match &p.tiles {
+        // Tile by tile: each tile's list is split once into its packets' lists.
+        Some(tiles) if BW == BLOCK_W => {
+            for_each_strip(&mut frame, progress, |y_start, ids, depth| {
+                let rows = ids.len() / width;
+                let mut lists = PacketLists::default();
+                for tx in 0..width.div_ceil(TILE_W) {
+                    tiles.split_tile((tx, y_start / TILE_H), &mut lists);
+                    for by in (0..rows).step_by(BLOCK_H) {
+                        for col in 0..TILE_W / BLOCK_W {
+                            let bx = tx * TILE_W + col * BLOCK_W;
+                            if bx >= width {
+                                break;
+                            }
+                            let y = y_start + by;
+                            let (d, active) = block_rays::<BW>(tables, bx, y, width, height);
+                            let mut hit = Hit8::new(active);
+                            let k = by / BLOCK_H * (TILE_W / BLOCK_W) + col;
+                            tiles.trace_packet_x8(&p.packed, &lists, k, &d, &mut hit);
+                            store(ids, depth, bx, by, &hit);
+                        }
+                    }
+                }
+            })
+        }
+        _ => for_each_strip(&mut frame, progress, |y_start, ids, depth| {
+            let rows = ids.len() / width;
+            for by in (0..rows).step_by(LANES / BW) {
+                for bx in (0..width).step_by(BW) {
+                    let (d, active) = block_rays::<BW>(tables, bx, y_start + by, width, height);
+                    let mut hit = Hit8::new(active);
+                    let y = y_start + by;
+                    p.trace_x8([bx, y, bx + BW - 1, y + LANES / BW - 1], &d, &mut hit);
+                    store(ids, depth, bx, by, &hit);
+                }
+            }
+        }),
+    }
     frame
 }
 
