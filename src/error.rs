@@ -4,7 +4,8 @@ use std::fmt;
 use std::path::PathBuf;
 
 /// Every way a lanecast run can fail. `exit_code` maps each to the documented code:
-/// 2 for bad usage or bad input, 1 for everything else (I/O, failed comparisons).
+/// 2 for bad usage or bad input (content), 1 for everything else: I/O (a missing or unreadable
+/// scene or mesh file, an unwritable output) and failed comparisons.
 #[derive(Debug)]
 pub enum Error {
     /// A bad command-line argument; the message names the argument.
@@ -31,7 +32,21 @@ pub enum Error {
     Io {
         /// The file or folder the operation was on.
         path: PathBuf,
-        /// What was being done, as a verb phrase after "cannot" ("read mesh", "write output").
+        /// What was being done, as a verb phrase after "cannot" ("read scene", "write output").
+        action: &'static str,
+        /// The underlying I/O error.
+        source: std::io::Error,
+    },
+    /// Reading a file that an input file names failed (a scene's `mesh` file): an I/O error
+    /// like [`Error::Io`], reported at the line that names the file.
+    IoAt {
+        /// The input file whose line names `path`.
+        file: PathBuf,
+        /// 1-based line of `file` that names `path`.
+        line: usize,
+        /// The file the operation was on, as resolved (relative to `file`'s folder).
+        path: PathBuf,
+        /// What was being done, as a verb phrase after "cannot" ("read mesh").
         action: &'static str,
         /// The underlying I/O error.
         source: std::io::Error,
@@ -42,11 +57,12 @@ pub enum Error {
 
 impl Error {
     /// The process exit code for this error: 2 for usage and input errors, 1 for I/O and
-    /// other failures.
+    /// other failures. A file that cannot be read is an I/O error whether the command line
+    /// names it (the scene) or the scene does (a mesh).
     pub fn exit_code(&self) -> i32 {
         match self {
             Error::Usage(_) | Error::Input { .. } | Error::InputFile { .. } => 2,
-            Error::Io { .. } | Error::Failed(_) => 1,
+            Error::Io { .. } | Error::IoAt { .. } | Error::Failed(_) => 1,
         }
     }
 
@@ -103,6 +119,18 @@ impl fmt::Display for Error {
             } => {
                 write!(f, "{}: cannot {action}: {source}", path.display())
             }
+            Error::IoAt {
+                file,
+                line,
+                path,
+                action,
+                source,
+            } => write!(
+                f,
+                "{}:{line}: cannot {action} {}: {source}",
+                file.display(),
+                path.display()
+            ),
             Error::Failed(m) => write!(f, "{m}"),
         }
     }

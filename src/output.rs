@@ -9,6 +9,10 @@
 //! registry of pending temporary files is locked across "create + register" and across
 //! "rename + unregister", so the handler sees either a temporary file (and removes it) or a
 //! finished rename (and leaves the complete target), never a half state.
+//!
+//! The functions here write one file each. The command line writes the outputs of a run as an
+//! [`OutputSet`]: all checked and their temporary files created before any work, all renamed
+//! together at the end (the `set` module).
 
 use std::ffi::OsString;
 use std::fs::{self, File, OpenOptions};
@@ -23,6 +27,9 @@ use image::codecs::bmp::BmpEncoder;
 use image::codecs::png::{CompressionType, FilterType, PngEncoder};
 
 use crate::{Error, Result};
+
+mod set;
+pub use set::{OutputKind, OutputSet};
 
 /// Image formats lanecast writes, chosen by the output file's extension.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -55,10 +62,20 @@ pub fn image_format(path: &Path) -> Result<ImageFormat> {
 /// 1920x1080 synthetic renders (release build): a flat-shaded scene of spheres over a tiled
 /// floor took 2.6 ms / 107 kB (zlib default: 15 ms / 62 kB); a worst case of 6x6-pixel
 /// primitives with per-pixel depth took 11 ms / 2.9 MB (zlib default: 450 ms / 2.1 MB). The
-/// `Sub` filter alone is faster on smooth scenes but 60% larger on busy ones. The PNG is built
-/// in memory (small next to the pixels); a BMP is as large as the pixels, so it is streamed
-/// into the temporary file instead.
+/// `Sub` filter alone is faster on smooth scenes but 60% larger on busy ones. Both formats are
+/// streamed into the temporary file through a 64 KiB buffer.
 pub fn write_image(path: &Path, width: u32, height: u32, rgb: &[u8]) -> Result<()> {
+    write_atomic_with(path, image_fill(path, width, height, rgb)?)
+}
+
+/// The encoder of an image file, checked (format from `path`'s extension, pixel count) before
+/// any file is touched.
+fn image_fill<'a>(
+    path: &Path,
+    width: u32,
+    height: u32,
+    rgb: &'a [u8],
+) -> Result<impl FnOnce(&mut BufWriter<File>) -> io::Result<()> + 'a> {
     let format = image_format(path)?;
     if u64::from(width) * u64::from(height) * 3 != rgb.len() as u64 {
         return Err(Error::Failed(format!(
@@ -67,26 +84,20 @@ pub fn write_image(path: &Path, width: u32, height: u32, rgb: &[u8]) -> Result<(
             rgb.len()
         )));
     }
-    let encode_failed = |e: image::ImageError| {
-        Error::Failed(format!("{}: cannot encode image: {e}", path.display()))
+    let as_io = |e: image::ImageError| match e {
+        image::ImageError::IoError(e) => e,
+        other => io::Error::other(format!("cannot encode image: {other}")),
     };
-    match format {
+    Ok(move |w: &mut BufWriter<File>| match format {
         ImageFormat::Png => {
-            let mut png = Vec::new();
-            PngEncoder::new_with_quality(&mut png, CompressionType::Fast, FilterType::Adaptive)
+            PngEncoder::new_with_quality(w, CompressionType::Fast, FilterType::Adaptive)
                 .write_image(rgb, width, height, ExtendedColorType::Rgb8)
-                .map_err(encode_failed)?;
-            write_atomic(path, &png)
+                .map_err(as_io)
         }
-        ImageFormat::Bmp => write_atomic_with(path, |w| {
-            BmpEncoder::new(w)
-                .encode(rgb, width, height, ExtendedColorType::Rgb8)
-                .map_err(|e| match e {
-                    image::ImageError::IoError(e) => e,
-                    other => io::Error::other(other),
-                })
-        }),
-    }
+        ImageFormat::Bmp => BmpEncoder::new(w)
+            .encode(rgb, width, height, ExtendedColorType::Rgb8)
+            .map_err(as_io),
+    })
 }
 
 /// Writes `bytes` to `path` atomically: temporary file in the same folder, sync, rename.
@@ -157,6 +168,25 @@ fn create_temp(path: &Path) -> io::Result<(PathBuf, File)> {
     }
 }
 
+/// Fills `file` through a buffered writer, flushes and syncs it, and closes it.
+fn fill_file(
+    file: File,
+    fill: impl FnOnce(&mut BufWriter<File>) -> io::Result<()>,
+) -> io::Result<()> {
+    let mut w = BufWriter::with_capacity(1 << 16, file);
+    fill(&mut w)?;
+    let file = w.into_inner().map_err(|e| e.into_error())?;
+    file.sync_all()
+}
+
+/// Removes a temporary file that will not be renamed, and forgets it.
+fn discard_temp(tmp: &Path) {
+    let mut list = pending();
+    // The file handle is closed by now; removal failing leaves nothing better to do.
+    let _ = fs::remove_file(tmp);
+    unregister(&mut list, tmp);
+}
+
 /// The atomic write, with the content produced by `fill` into a buffered writer.
 fn write_atomic_with(
     path: &Path,
@@ -164,22 +194,14 @@ fn write_atomic_with(
 ) -> Result<()> {
     let fail = |e| Error::io(path, "write output", e);
     let (tmp, file) = create_temp(path).map_err(fail)?;
-    let result = (|| {
-        let mut w = BufWriter::with_capacity(1 << 16, file);
-        fill(&mut w)?;
-        let file = w.into_inner().map_err(|e| e.into_error())?;
-        file.sync_all()?;
-        drop(file);
+    let result = fill_file(file, fill).and_then(|()| {
         let mut list = pending();
         fs::rename(&tmp, path)?;
         unregister(&mut list, &tmp);
         Ok(())
-    })();
+    });
     if let Err(e) = result {
-        // The file handle is closed by now; removal failing leaves nothing better to do.
-        let mut list = pending();
-        let _ = fs::remove_file(&tmp);
-        unregister(&mut list, &tmp);
+        discard_temp(&tmp);
         return Err(fail(e));
     }
     sync_parent(path);
@@ -258,14 +280,15 @@ fn npy_bytes<T: Copy>(
     out
 }
 
-/// Shared by the `write_npy_*` functions: the file is streamed, never built whole in memory.
-fn write_npy<T: Copy>(
+/// The writer of a `.npy` file, streamed, never built whole in memory; the shape is checked
+/// before any file is touched.
+fn npy_fill<'a, T: Copy>(
     path: &Path,
-    descr: &str,
+    descr: &'a str,
     (width, height): (usize, usize),
-    data: &[T],
-    le: impl Fn(T) -> [u8; 4],
-) -> Result<()> {
+    data: &'a [T],
+    le: impl Fn(T) -> [u8; 4] + 'a,
+) -> Result<impl FnOnce(&mut BufWriter<File>) -> io::Result<()> + 'a> {
     if width.checked_mul(height) != Some(data.len()) {
         return Err(Error::Failed(format!(
             "{}: internal error: {} values for a {width}x{height} array",
@@ -273,10 +296,21 @@ fn write_npy<T: Copy>(
             data.len()
         )));
     }
-    write_atomic_with(path, |w| {
+    Ok(move |w: &mut BufWriter<File>| {
         w.write_all(&npy_header(descr, width, height))?;
         write_le(w, data, le)
     })
+}
+
+/// Shared by the `write_npy_*` functions.
+fn write_npy<T: Copy>(
+    path: &Path,
+    descr: &str,
+    shape: (usize, usize),
+    data: &[T],
+    le: impl Fn(T) -> [u8; 4],
+) -> Result<()> {
+    write_atomic_with(path, npy_fill(path, descr, shape, data, le)?)
 }
 
 /// Writes a `height` x `width` i32 array as `.npy`, atomically.

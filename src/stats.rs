@@ -8,6 +8,10 @@ use std::time::Duration;
 /// One run's facts. Times in seconds.
 #[derive(Debug, Clone, Default)]
 pub struct Stats {
+    /// lanecast's version (`CARGO_PKG_VERSION`).
+    pub version: &'static str,
+    /// The full command line, program name first (lossy where an argument is not UTF-8).
+    pub command: Vec<String>,
     pub scene: String,
     pub width: usize,
     pub height: usize,
@@ -17,6 +21,11 @@ pub struct Stats {
     pub method: &'static str,
     pub accel: &'static str,
     pub threads: usize,
+    /// Seed of the `random` colours.
+    pub seed: u64,
+    /// Every output file of the run: (what, path as given), `what` one of `image`, `ids`,
+    /// `depth`, `stats`.
+    pub outputs: Vec<(&'static str, String)>,
     /// Phases in order: parse, setup, render (best of the repeats), shade, write.
     pub phases: Vec<(&'static str, f64)>,
     /// Render phase of every repeat.
@@ -94,7 +103,14 @@ impl Stats {
             .iter()
             .map(|(n, v)| (n.to_string(), (*v).into()))
             .collect();
+        let outputs: serde_json::Map<String, serde_json::Value> = self
+            .outputs
+            .iter()
+            .map(|(what, path)| (what.to_string(), path.clone().into()))
+            .collect();
         let record = serde_json::json!({
+            "version": self.version,
+            "command": self.command,
             "scene": self.scene,
             "width": self.width,
             "height": self.height,
@@ -103,6 +119,8 @@ impl Stats {
             "method": self.method,
             "accel": self.accel,
             "threads": self.threads,
+            "seed": self.seed,
+            "outputs": outputs,
             "simd": simd_in_use(),
             "phases_s": phases,
             "renders_s": self.renders,
@@ -151,6 +169,10 @@ mod tests {
 
     fn stats() -> Stats {
         Stats {
+            version: "9.8.7",
+            command: vec!["lanecast".into(), "-i".into(), "a \"q\".sc".into()],
+            seed: u64::MAX,
+            outputs: vec![("image", "a.png".into()), ("stats", "s.json".into())],
             scene: "a \"q\".sc".into(),
             width: 10,
             height: 10,
@@ -190,5 +212,10 @@ mod tests {
         let v: serde_json::Value = serde_json::from_str(&j).expect("valid JSON");
         assert_eq!(v["render_best_s"].as_f64(), Some(2e-3), "{j}");
         assert_eq!(v["scene"], "a \"q\".sc");
+        assert_eq!(v["version"], "9.8.7");
+        assert_eq!(v["command"][2], "a \"q\".sc");
+        assert_eq!(v["seed"].as_u64(), Some(u64::MAX));
+        assert_eq!(v["outputs"]["image"], "a.png");
+        assert_eq!(v["outputs"]["stats"], "s.json");
     }
 }

@@ -328,8 +328,9 @@ fn existing_output_survives_a_failed_write() {
     ]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert_eq!(fs::read(folder.join("keep")).unwrap(), b"k");
-    // A later output failing (ids into a file-as-folder) after the image was written: the
-    // image is complete and nothing temporary is left.
+    // A later output that cannot be written (ids into a file-as-folder): refused before any
+    // work, so the image is not written either (the outputs are a set) and nothing temporary
+    // is left.
     let png = dir.path("new.png");
     let ids = old.join("ids.npy");
     let o = run(&[
@@ -344,23 +345,29 @@ fn existing_output_survives_a_failed_write() {
     ]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert_eq!(fs::read(&old).unwrap(), b"old");
-    assert_eq!(dir.entries(), ["dir.png", "new.png", "old.png", "s.sc"]);
+    assert!(stderr(&o).contains("--ids"), "{}", stderr(&o));
+    assert_eq!(dir.entries(), ["dir.png", "old.png", "s.sc"]);
 }
 
 #[test]
 fn output_equal_to_input_is_refused() {
     let dir = TempDir::new("same");
-    // The scene is named like an image so that `-o` passes the extension check.
-    let scene = good_scene(&dir, "scene.png");
     let other = dir.path("out.png");
-    let text = fs::read(&scene).unwrap();
     for flag in ["-o", "--ids", "--depth"] {
+        // The scene is named like the output so that only the same-file rule can refuse it.
+        let name = if flag == "-o" {
+            "scene.png"
+        } else {
+            "scene.npy"
+        };
+        let scene = good_scene(&dir, name);
+        let text = fs::read(&scene).unwrap();
         let mut args: Vec<&std::ffi::OsStr> = vec!["-i".as_ref(), scene.as_os_str()];
         if flag != "-o" {
             args.extend(["-o".as_ref(), other.as_os_str()]);
         }
         // Same file under another spelling.
-        let spelled = dir.0.join(".").join("scene.png");
+        let spelled = dir.0.join(".").join(name);
         args.extend([
             flag.as_ref(),
             spelled.as_os_str(),
@@ -373,7 +380,8 @@ fn output_equal_to_input_is_refused() {
         assert!(err.starts_with("lanecast: error: "), "{err}");
         assert!(err.contains(flag) && err.contains("input scene"), "{err}");
         assert_eq!(fs::read(&scene).unwrap(), text, "{flag}");
-        assert_eq!(dir.entries(), ["scene.png"], "{flag}");
+        assert_eq!(dir.entries(), [name], "{flag}");
+        fs::remove_file(&scene).unwrap();
     }
 }
 

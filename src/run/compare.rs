@@ -7,7 +7,7 @@ use crate::compare::{
     EDGE_BAND, Report, TIE_REL, class_colour, compare_method, compare_with, marked_render,
 };
 use crate::error::{Error, Result};
-use crate::output;
+use crate::output::{self, OutputKind, OutputSet};
 use crate::render::{Frame, Method};
 
 /// The diff image of `compare -o`.
@@ -18,16 +18,16 @@ fn diff_image(report: &Report, oracle: &Frame<f64>) -> Vec<u8> {
 /// Runs the compare command: prints the report, writes the diff image, fails past tolerance.
 pub(crate) fn compare_command(s: &CompareSettings) -> Result<()> {
     output::install_interrupt_cleanup();
-    if let Some(out) = &s.output {
-        output::image_format(out)?;
-        if output::same_file(out, &s.view.input) {
-            return Err(Error::usage(format!(
-                "--output {}: is the input scene",
-                out.display()
-            )));
-        }
-    }
-    let (scene, camera) = load_view(&s.view)?;
+    // The diff image follows the render command's rules: checked, and its temporary file
+    // created, before the scene is read; renamed into place only after the whole comparison.
+    let outs: Vec<_> = s
+        .output
+        .as_deref()
+        .map(|p| ("--output", p, OutputKind::Image))
+        .into_iter()
+        .collect();
+    let mut set = OutputSet::create(&outs, &[("the input scene", &s.view.input)])?;
+    let (scene, camera) = load_view(&s.view, &set)?;
     let method = s.view.method;
     let (report, oracle) = match method {
         Method::Default => compare_with(&scene, &camera, s.view.accel),
@@ -67,9 +67,15 @@ pub(crate) fn compare_command(s: &CompareSettings) -> Result<()> {
         "depth rel   max {:.3e}, p99 {:.3e} over {} same-id hits",
         r.depth_rel_max, r.depth_rel_p99, r.same_hits
     );
-    if let Some(out) = &s.output {
-        output::write_image(out, camera.width, camera.height, &diff_image(r, &oracle))?;
+    if s.output.is_some() {
+        set.write_image(
+            "--output",
+            camera.width,
+            camera.height,
+            &diff_image(r, &oracle),
+        )?;
     }
+    set.commit()?;
     if r.unexcused_ppm() > s.max_mismatch_ppm {
         return Err(Error::Failed(format!(
             "{} unexcused id mismatches ({:.1} ppm) exceed --max-mismatch-ppm {}",

@@ -8,7 +8,9 @@ mod render;
 use crate::camera::Camera;
 use crate::cli::{Command, ViewSettings};
 use crate::error::{Error, Result};
-use crate::scene::{Scene, load_scene};
+use crate::output::OutputSet;
+use crate::scene::{Scene, load_scene_meshes};
+use std::path::PathBuf;
 
 /// Runs a parsed command line.
 pub(crate) fn command(cmd: Command) -> Result<()> {
@@ -23,9 +25,16 @@ pub(crate) fn command(cmd: Command) -> Result<()> {
     }
 }
 
-/// Loads the scene (printing its warnings) and makes its camera for the requested view.
-fn load_view(v: &ViewSettings) -> Result<(Scene, Camera)> {
-    let scene = load_scene(&v.input)?;
+/// Loads the scene (printing its warnings) and makes its camera for the requested view,
+/// refusing any output of `set` that names one of the mesh files the scene read (the scene
+/// file itself is checked by `OutputSet::create`, before parsing).
+fn load_view(v: &ViewSettings, set: &OutputSet) -> Result<(Scene, Camera)> {
+    let (scene, meshes) = load_scene_meshes(&v.input)?;
+    let reads: Vec<(String, PathBuf)> = meshes
+        .into_iter()
+        .map(|m| (format!("the mesh {} the scene reads", m.display()), m))
+        .collect();
+    set.check_reads(&reads)?;
     for w in &scene.warnings {
         eprintln!("lanecast: warning: {w}");
     }

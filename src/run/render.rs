@@ -1,15 +1,15 @@
-//! The render command, phase by phase: parse, setup, render, shade, write.
+//! The render command, phase by phase: check the outputs, parse, setup, render, shade, write.
 
 use super::load_view;
 use crate::cli::{KernelArg, RenderSettings};
 use crate::error::{Error, Result};
 use crate::limits::{BYTES_PER_PIXEL, MAX_PIXELS};
-use crate::output;
+use crate::output::{self, OutputKind, OutputSet};
 use crate::progress;
 use crate::render::{Kernel, Method, Options, Renderer};
 use crate::shade::shade;
 use crate::stats::{Stats, scene_name, secs};
-use std::path::PathBuf;
+use std::path::Path;
 use std::time::Instant;
 
 impl From<KernelArg> for Kernel {
@@ -22,31 +22,23 @@ impl From<KernelArg> for Kernel {
     }
 }
 
-/// Refuses, before any work, outputs that would overwrite the input or each other, and image
-/// paths whose extension names no supported format.
-fn check_outputs(s: &RenderSettings) -> Result<()> {
-    output::image_format(&s.output)?;
-    let mut outs: Vec<(&str, &PathBuf)> = vec![("--output", &s.output)];
-    outs.extend(s.ids.as_ref().map(|p| ("--ids", p)));
-    outs.extend(s.depth.as_ref().map(|p| ("--depth", p)));
-    outs.extend(s.stats.as_ref().map(|p| ("--stats", p)));
-    for (i, (flag, path)) in outs.iter().enumerate() {
-        if output::same_file(path, &s.view.input) {
-            return Err(Error::usage(format!(
-                "{flag} {}: is the input scene; refusing to overwrite it",
-                path.display()
-            )));
-        }
-        for (other, opath) in &outs[..i] {
-            if output::same_file(path, opath) {
-                return Err(Error::usage(format!(
-                    "{flag} {} and {other} name the same file",
-                    path.display()
-                )));
-            }
-        }
+/// The outputs the render command writes: (flag, path, kind), the image first.
+fn outputs(s: &RenderSettings) -> Vec<(&'static str, &Path, OutputKind)> {
+    let mut outs = vec![("--output", s.output.as_path(), OutputKind::Image)];
+    outs.extend(s.ids.as_deref().map(|p| ("--ids", p, OutputKind::Npy)));
+    outs.extend(s.depth.as_deref().map(|p| ("--depth", p, OutputKind::Npy)));
+    outs.extend(s.stats.as_deref().map(|p| ("--stats", p, OutputKind::Json)));
+    outs
+}
+
+/// The key of an output in the `--stats` record.
+fn stats_key(flag: &str) -> &'static str {
+    match flag {
+        "--output" => "image",
+        "--ids" => "ids",
+        "--depth" => "depth",
+        _ => "stats",
     }
-    Ok(())
 }
 
 /// Checks the memory a render of `width` x `height` needs against `limits::MAX_PIXELS`.
@@ -61,29 +53,12 @@ fn check_memory(width: u32, height: u32) -> Result<()> {
     Ok(())
 }
 
-/// Runs the render command.
+/// Runs the render command. Every output is checked and its temporary file created before the
+/// scene is read; the outputs are renamed into place together at the end (`OutputSet`).
 pub(crate) fn render_command(s: &RenderSettings) -> Result<()> {
     // hardening (issue 5): Ctrl-C / SIGTERM remove pending temporary files, exit 130.
     output::install_interrupt_cleanup();
-    check_outputs(s)?;
     check_memory(s.view.width, s.view.height)?;
-    let mut stats = Stats {
-        scene: scene_name(&s.view.input),
-        width: s.view.width as usize,
-        height: s.view.height as usize,
-        kernel: s.kernel.name(),
-        ..Stats::default()
-    };
-    let mut clock = Instant::now();
-    let lap = |name, stats: &mut Stats, clock: &mut Instant| {
-        stats.phases.push((name, secs(clock.elapsed())));
-        *clock = Instant::now();
-    };
-
-    let (scene, camera) = load_view(&s.view)?;
-    stats.primitives = scene.counts();
-    lap("parse", &mut stats, &mut clock);
-
     let method = s.view.method;
     if method != Method::Default && s.kernel != KernelArg::Simd {
         return Err(Error::usage(format!(
@@ -92,6 +67,33 @@ pub(crate) fn render_command(s: &RenderSettings) -> Result<()> {
             s.kernel.name()
         )));
     }
+    let mut set = OutputSet::create(&outputs(s), &[("the input scene", &s.view.input)])?;
+    let mut stats = Stats {
+        version: env!("CARGO_PKG_VERSION"),
+        command: std::env::args_os()
+            .map(|a| a.to_string_lossy().into_owned())
+            .collect(),
+        scene: scene_name(&s.view.input),
+        width: s.view.width as usize,
+        height: s.view.height as usize,
+        kernel: s.kernel.name(),
+        seed: s.seed,
+        outputs: set
+            .paths()
+            .map(|(flag, p)| (stats_key(flag), p.display().to_string()))
+            .collect(),
+        ..Stats::default()
+    };
+    let mut clock = Instant::now();
+    let lap = |name, stats: &mut Stats, clock: &mut Instant| {
+        stats.phases.push((name, secs(clock.elapsed())));
+        *clock = Instant::now();
+    };
+
+    let (scene, camera) = load_view(&s.view, &set)?;
+    stats.primitives = scene.counts();
+    lap("parse", &mut stats, &mut clock);
+
     let options = Options {
         kernel: s.kernel.into(),
         accel: s.view.accel,
@@ -133,20 +135,22 @@ pub(crate) fn render_command(s: &RenderSettings) -> Result<()> {
     );
     lap("shade", &mut stats, &mut clock);
 
-    output::write_image(&s.output, s.view.width, s.view.height, &rgb)?;
-    if let Some(p) = &s.ids {
-        output::write_npy_i32(p, w, h, &frame.ids)?;
+    // Into the temporary files; the targets change only in `commit`, all together.
+    set.write_image("--output", s.view.width, s.view.height, &rgb)?;
+    if s.ids.is_some() {
+        set.write_npy_i32("--ids", w, h, &frame.ids)?;
     }
-    if let Some(p) = &s.depth {
-        output::write_npy_f32(p, w, h, &frame.depth)?;
+    if s.depth.is_some() {
+        set.write_npy_f32("--depth", w, h, &frame.depth)?;
     }
     lap("write", &mut stats, &mut clock);
 
+    if s.stats.is_some() {
+        set.write_bytes("--stats", stats.json().as_bytes())?;
+    }
+    set.commit()?;
     if s.time {
         eprint!("{}", stats.text());
-    }
-    if let Some(p) = &s.stats {
-        output::write_atomic(p, stats.json().as_bytes())?;
     }
     Ok(())
 }

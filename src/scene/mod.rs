@@ -30,6 +30,15 @@ pub fn load_scene(path: &Path) -> Result<Scene> {
     Ok(scene)
 }
 
+/// [`load_scene`], also returning every mesh file the scene read, in the order of its `mesh`
+/// lines, each as resolved (joined to the scene's folder): with the scene file itself, every
+/// file the load read. The command line refuses an output that names any of them.
+pub fn load_scene_meshes(path: &Path) -> Result<(Scene, Vec<PathBuf>)> {
+    let (scene, meshes) = parse::load_scene_meshes(path)?;
+    validate::f32_range(&scene)?;
+    Ok((scene, meshes))
+}
+
 /// [`load_scene`] for scene text in memory; `file` names the scene in messages, and `mesh`
 /// paths are relative to its folder.
 pub fn parse_scene(text: &str, file: &Path) -> Result<Scene> {

@@ -46,25 +46,29 @@ use crate::limits::{MAX_PRIMITIVES, MAX_SCENE_BYTES};
 use glam::DVec3;
 use rayon::prelude::*;
 use std::ops::Range;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 const BOM: &[u8] = "\u{feff}".as_bytes();
 
 /// Reads and parses a scene file. The size is checked against `MAX_SCENE_BYTES` before
 /// reading, and the text must be UTF-8.
 pub fn load_scene(path: &Path) -> Result<Scene> {
+    load_scene_meshes(path).map(|(scene, _)| scene)
+}
+
+/// [`load_scene`], with the path of every mesh file the scene read, in the order of its
+/// `mesh` lines (as resolved: relative to the scene's folder).
+pub fn load_scene_meshes(path: &Path) -> Result<(Scene, Vec<PathBuf>)> {
     let io_err = |e| Error::io(path, "read scene", e);
     let meta = std::fs::metadata(path).map_err(io_err)?;
     if meta.len() > MAX_SCENE_BYTES {
         return Err(too_big(path, meta.len()));
     }
     let bytes = chunks::read_file(path, MAX_SCENE_BYTES).map_err(io_err)?;
-    parse_bytes(
-        &bytes,
-        path,
-        MAX_PRIMITIVES,
-        chunks::chunk_bytes(bytes.len()),
-    )
+    let mut meshes = Vec::new();
+    let chunk = chunks::chunk_bytes(bytes.len());
+    let scene = parse_bytes_meshes(&bytes, path, MAX_PRIMITIVES, chunk, &mut meshes)?;
+    Ok((scene, meshes))
 }
 
 fn too_big(path: &Path, len: u64) -> Error {
@@ -113,6 +117,17 @@ pub(super) fn parse_bytes(
     max_primitives: usize,
     chunk_bytes: usize,
 ) -> Result<Scene> {
+    parse_bytes_meshes(bytes, file, max_primitives, chunk_bytes, &mut Vec::new())
+}
+
+/// [`parse_bytes`], recording in `meshes` the path of every mesh file read.
+fn parse_bytes_meshes(
+    bytes: &[u8],
+    file: &Path,
+    max_primitives: usize,
+    chunk_bytes: usize,
+    meshes: &mut Vec<PathBuf>,
+) -> Result<Scene> {
     if bytes.len() as u64 > MAX_SCENE_BYTES {
         return Err(too_big(file, bytes.len() as u64));
     }
@@ -128,7 +143,7 @@ pub(super) fn parse_bytes(
         return Err(utf8_error(file, bytes, bom + bad));
     }
     let outs: Vec<ChunkOut> = outs.into_iter().flatten().collect();
-    let line = match join(outs, file, max_primitives) {
+    let line = match join(outs, file, max_primitives, meshes) {
         Ok(scene) => return Ok(scene),
         Err(Halt::Error(e)) => return Err(e),
         Err(Halt::Rerun) => {
@@ -148,7 +163,7 @@ pub(super) fn parse_bytes(
                 .last()
                 .and_then(|o| o.stop.as_ref())
                 .map_or(0, |s| s.line);
-            match join(outs, file, max_primitives) {
+            match join(outs, file, max_primitives, meshes) {
                 Ok(scene) => return Ok(scene),
                 Err(Halt::Error(e)) => return Err(e),
                 // In order, the budget runs out only past the limit, which `join` finds first.
@@ -194,7 +209,14 @@ impl Piece {
 }
 
 /// The chunks' results in file order: limit, cameras, meshes, the first error; then the scene.
-fn join(mut outs: Vec<ChunkOut>, file: &Path, max: usize) -> std::result::Result<Scene, Halt> {
+/// Every mesh file read is recorded in `meshes` (which starts empty: a rerun reads them again).
+fn join(
+    mut outs: Vec<ChunkOut>,
+    file: &Path,
+    max: usize,
+    meshes: &mut Vec<PathBuf>,
+) -> std::result::Result<Scene, Halt> {
+    meshes.clear();
     let mut camera: Option<(CameraSpec, usize)> = None;
     let mut pieces = Vec::new();
     let mut total = 0;
@@ -230,7 +252,9 @@ fn join(mut outs: Vec<ChunkOut>, file: &Path, max: usize) -> std::result::Result
                 }
                 Event::Mesh { line, at, path } => {
                     place(at, &mut total, &mut pieces)?;
-                    let tris = load_mesh(file, line, path, max - total, &mut warnings)?;
+                    let path = file.parent().map_or_else(|| path.into(), |d| d.join(path));
+                    let tris = load_mesh(file, line, &path, max - total, &mut warnings)?;
+                    meshes.push(path);
                     total += tris.len();
                     pieces.push(Piece::Mesh(tris, line));
                 }
@@ -286,16 +310,20 @@ fn join(mut outs: Vec<ChunkOut>, file: &Path, max: usize) -> std::result::Result
 fn load_mesh(
     file: &Path,
     line: usize,
-    path: &str,
+    path: &Path,
     room: usize,
     warnings: &mut Vec<String>,
 ) -> Result<Vec<[DVec3; 3]>> {
-    let path = file.parent().map_or_else(|| path.into(), |d| d.join(path));
-    let (tris, degenerate) = mesh::load_obj(&path, room).map_err(|e| match e {
-        Error::Io { source, .. } => {
-            let msg = format!("cannot read mesh {}: {source}", path.display());
-            Error::input(file, line, 0, msg)
-        }
+    // A mesh that cannot be read is an I/O error like a scene that cannot be read (exit 1),
+    // reported at the line naming it.
+    let (tris, degenerate) = mesh::load_obj(path, room).map_err(|e| match e {
+        Error::Io { source, .. } => Error::IoAt {
+            file: file.to_path_buf(),
+            line,
+            path: path.to_path_buf(),
+            action: "read mesh",
+            source,
+        },
         other => other,
     })?;
     if degenerate > 0 {
