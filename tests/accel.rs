@@ -1,4 +1,4 @@
-//! Accelerations agree: the packet kernel with `--accel bvh` and with `--accel tiles` returns
+//! Accelerations agree: the scalar kernels with `--accel tiles`, and the packet kernel with `--accel bvh` and with `--accel tiles` returns
 //! exactly the ids and depths of `--accel none` (the nearest-hit rule is order-independent, the
 //! BVH's padded boxes never cull a primitive a ray hits, and the tiles' rectangles and near
 //! bounds are conservative), on the seed scenes, random scenes of every type, dense random
@@ -10,11 +10,35 @@ mod common;
 use common::*;
 use glam::DVec3;
 use lanecast::accel::Accel;
-use lanecast::render::{PacketScene, render_packet};
+use lanecast::render::{Frame, Kernel, PacketScene, Setup, render_packet};
 use lanecast::scene::{Scene, Shape};
+
+fn same_bits(what: &str, w: u32, a: &Frame<f32>, b: &Frame<f32>) {
+    for i in 0..a.ids.len() {
+        assert_eq!(
+            (a.ids[i], a.depth[i].to_bits()),
+            (b.ids[i], b.depth[i].to_bits()),
+            "{what}: pixel ({}, {})",
+            i % w as usize,
+            i / w as usize
+        );
+    }
+}
 
 fn frames_equal(name: &str, scene: &Scene, w: u32, h: u32) {
     let camera = camera_of(scene, w, h);
+    // The scalar kernels (the f64 oracle and scalar-f32) through the tiles, against themselves
+    // testing every primitive.
+    for kernel in [Kernel::ScalarF64, Kernel::ScalarF32] {
+        let none = Setup::with_accel(kernel, Accel::None, scene, &camera);
+        let tiles = Setup::with_accel(kernel, Accel::Tiles, scene, &camera);
+        assert_eq!((none.accel(), tiles.accel()), (Accel::None, Accel::Tiles));
+        let (a, b) = (
+            none.render(w as usize, h as usize),
+            tiles.render(w as usize, h as usize),
+        );
+        same_bits(&format!("{name}, {kernel:?} tiles"), w, &a, &b);
+    }
     let tables = camera.tables::<f32>(4, 2);
     let none = PacketScene::new(scene, &camera, Accel::None);
     assert_eq!(none.accel(), Accel::None);
@@ -25,16 +49,7 @@ fn frames_equal(name: &str, scene: &Scene, w: u32, h: u32) {
         let other = PacketScene::new(scene, &camera, accel);
         assert_eq!(other.accel(), accel);
         let b = render_packet(&other, &tables, w as usize, h as usize);
-        for i in 0..a.ids.len() {
-            assert_eq!(
-                (a.ids[i], a.depth[i].to_bits()),
-                (b.ids[i], b.depth[i].to_bits()),
-                "{name}, {}: pixel ({}, {})",
-                accel.name(),
-                i % w as usize,
-                i / w as usize
-            );
-        }
+        same_bits(&format!("{name}, {}", accel.name()), w, &a, &b);
     }
 }
 

@@ -58,13 +58,17 @@
 //! crossing the eye's plane, the eye inside a sphere, rectangles clipped at the border).
 
 use crate::camera::Camera;
-use crate::kernel::Hit8;
 use crate::kernel::packet::{BLOCK_H, BLOCK_W};
 use crate::kernel::polygon::polygon_lanes_all;
+use crate::kernel::polygon::polygon_x1;
 #[cfg(test)]
 use crate::kernel::polygon::polygon_x8;
+use crate::kernel::sphere::sphere_x1;
 use crate::kernel::sphere::sphere_x8;
+use crate::kernel::{Hit, Hit8};
+use crate::real::{Real, V3};
 use crate::soa::Packed;
+use crate::soa::Prepared;
 use glam::DVec3;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU32, Ordering};
@@ -422,6 +426,42 @@ impl Tiles {
             }
             test_entry(p, e, d, hit);
         }
+    }
+}
+
+impl Tiles {
+    /// Nearest hit of the ray `d` of pixel `(x, y)` with the scalar kernels in precision `T`
+    /// (the oracle in f64, `scalar-f32`): the pixel's tile list, nearest first, left once the
+    /// hit is nearer than the next entry's `near`. `p` holds the same primitives in the same
+    /// order as the `Packed` the tiles were built from.
+    ///
+    /// The bounds hold for both precisions: the f64 kernel accepts rays within a far smaller
+    /// edge tolerance than the f32 one (`kernel::edge_eps`) and its distances err by f64 rounding
+    /// only, so its hits lie inside the f32 rectangles and beyond the f32 `near`; the scalar f32
+    /// kernel is the packet kernel's formula in one lane. Proven against `--accel none`, bit for
+    /// bit, by tests/accel.rs.
+    #[inline]
+    pub fn trace_x1<T: Real>(&self, p: &Prepared<T>, (x, y): (usize, usize), d: V3<T>) -> Hit<T> {
+        let mut hit = Hit::NONE;
+        for e in self.list(x / TILE_W, y / TILE_H) {
+            if hit.t < T::from_f64(e.near as f64) {
+                break;
+            }
+            let [x0, y0, x1, y1] = e.rect.map(usize::from);
+            if x < x0 || x > x1 || y < y0 || y > y1 {
+                continue;
+            }
+            let i = (e.prim & INDEX_MASK) as usize;
+            let found = match e.prim >> KIND_SHIFT {
+                SPHERE => sphere_x1(&p.spheres.k[i], d).map(|t| (t, p.spheres.id[i])),
+                TRIANGLE => polygon_x1(&p.triangles.k[i], d).map(|t| (t, p.triangles.id[i])),
+                _ => polygon_x1(&p.quads.k[i], d).map(|t| (t, p.quads.id[i])),
+            };
+            if let Some((t, id)) = found {
+                hit.update(t, id);
+            }
+        }
+        hit
     }
 }
 

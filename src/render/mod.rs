@@ -240,12 +240,15 @@ pub fn render_scalar<T: Real>(
     width: usize,
     height: usize,
 ) -> Frame<T> {
-    render_scalar_counting(p, tables, width, height, None)
+    render_scalar_counting(p, tables, None, width, height, None)
 }
 
-fn render_scalar_counting<T: Real>(
+/// [`render_scalar`] through `tiles` when given (bit-identical to without), counting finished
+/// strips in `progress`.
+pub(crate) fn render_scalar_counting<T: Real>(
     p: &Prepared<T>,
     tables: &RayTables<T>,
+    tiles: Option<&Tiles>,
     width: usize,
     height: usize,
     progress: Option<&AtomicUsize>,
@@ -253,7 +256,11 @@ fn render_scalar_counting<T: Real>(
     let mut frame = Frame::new(width, height, T::INFINITY);
     for_each_strip(&mut frame, progress, |y_start, ids, depth| {
         for (i, (id, t)) in ids.iter_mut().zip(depth.iter_mut()).enumerate() {
-            let hit = trace_x1(p, tables.dir_x1(i % width, y_start + i / width));
+            let (x, y) = (i % width, y_start + i / width);
+            let hit = match tiles {
+                Some(tiles) => tiles.trace_x1(p, (x, y), tables.dir_x1(x, y)),
+                None => trace_x1(p, tables.dir_x1(x, y)),
+            };
             *id = hit.id;
             *t = hit.t;
         }
@@ -272,6 +279,19 @@ pub fn f32_depth(f: Frame<f64>) -> Frame<f32> {
     }
 }
 
+/// The tiles the scalar kernels trace through, when `accel` resolves to them (as for the
+/// packet kernel: `auto` picks tiles from `accel::AUTO_MIN` primitives). The scalar kernels have
+/// no BVH traversal: `Accel::Bvh` is refused by [`Renderer::new`].
+pub(crate) fn scalar_tiles(
+    accel: Accel,
+    scene: &crate::scene::Scene,
+    p: &Prepared<f64>,
+    camera: &crate::camera::Camera,
+) -> Option<Box<Tiles>> {
+    let tiles = accel.resolve(scene.shapes.len()) == Accel::Tiles;
+    tiles.then(|| Box::new(Tiles::new(scene, &Packed::new(p), camera)))
+}
+
 /// Which kernel renders.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Kernel {
@@ -287,10 +307,11 @@ pub enum Kernel {
 pub enum Setup {
     /// [`Kernel::Packet`]: the SoA stores (and acceleration), f32 ray tables padded to blocks.
     Packet(Box<PacketScene>, RayTables<f32>),
-    /// [`Kernel::ScalarF32`]: f32 constant records and f32 ray tables.
-    ScalarF32(Prepared<f32>, RayTables<f32>),
-    /// [`Kernel::ScalarF64`]: f64 constant records and f64 ray tables (the oracle).
-    ScalarF64(Prepared<f64>, RayTables<f64>),
+    /// [`Kernel::ScalarF32`]: f32 constant records, f32 ray tables and the tiles, if used.
+    ScalarF32(Prepared<f32>, RayTables<f32>, Option<Box<Tiles>>),
+    /// [`Kernel::ScalarF64`]: f64 constant records, f64 ray tables and the tiles, if used
+    /// (the oracle).
+    ScalarF64(Prepared<f64>, RayTables<f64>, Option<Box<Tiles>>),
 }
 
 impl Setup {
@@ -304,7 +325,7 @@ impl Setup {
     }
 
     /// As [`Setup::new`], with the packet kernel's acceleration chosen by the caller (the
-    /// scalar kernels always test every primitive: they are the references).
+    /// scalar kernels trace through the tiles when it resolves to them, else test every primitive).
     pub fn with_accel(
         kernel: Kernel,
         accel: Accel,
@@ -317,10 +338,14 @@ impl Setup {
                 camera.tables(BLOCK_W as u32, BLOCK_H as u32),
             ),
             Kernel::ScalarF32 => {
-                Setup::ScalarF32(Prepared::new(scene, camera.eye).cast(), camera.tables(1, 1))
+                let p = Prepared::new(scene, camera.eye);
+                let tiles = scalar_tiles(accel, scene, &p, camera);
+                Setup::ScalarF32(p.cast(), camera.tables(1, 1), tiles)
             }
             Kernel::ScalarF64 => {
-                Setup::ScalarF64(Prepared::new(scene, camera.eye), camera.tables(1, 1))
+                let p = Prepared::new(scene, camera.eye);
+                let tiles = scalar_tiles(accel, scene, &p, camera);
+                Setup::ScalarF64(p, camera.tables(1, 1), tiles)
             }
         }
     }
@@ -329,7 +354,10 @@ impl Setup {
     pub fn accel(&self) -> Accel {
         match self {
             Setup::Packet(p, _) => p.accel(),
-            _ => Accel::None,
+            Setup::ScalarF32(_, _, t) | Setup::ScalarF64(_, _, t) => match t {
+                Some(_) => Accel::Tiles,
+                None => Accel::None,
+            },
         }
     }
 
@@ -348,10 +376,17 @@ impl Setup {
     ) -> Frame<f32> {
         match self {
             Setup::Packet(p, t) => render_packet_blocks::<BLOCK_W>(p, t, width, height, progress),
-            Setup::ScalarF32(p, t) => render_scalar_counting(p, t, width, height, progress),
-            Setup::ScalarF64(p, t) => {
-                f32_depth(render_scalar_counting(p, t, width, height, progress))
+            Setup::ScalarF32(p, t, tiles) => {
+                render_scalar_counting(p, t, tiles.as_deref(), width, height, progress)
             }
+            Setup::ScalarF64(p, t, tiles) => f32_depth(render_scalar_counting(
+                p,
+                t,
+                tiles.as_deref(),
+                width,
+                height,
+                progress,
+            )),
         }
     }
 }
@@ -363,7 +398,7 @@ impl Setup {
 pub struct Options {
     /// The kernel (`--kernel`).
     pub kernel: Kernel,
-    /// The packet kernel's acceleration (`--accel`); the scalar kernels test every primitive.
+    /// The acceleration (`--accel`): the packet kernel takes any; the scalar kernels tiles or none.
     pub accel: Accel,
     /// The intersection method (`--method`, `--precision`); methods other than
     /// [`Method::Default`] run with the packet kernel only.
@@ -395,13 +430,22 @@ enum Job {
 
 impl Renderer {
     /// Prepares `scene` seen by `camera` (the setup phase). Fails when the options contradict
-    /// each other: a method other than the default with a scalar kernel.
+    /// each other: a method other than the default with a scalar kernel, or a scalar kernel with
+    /// the BVH (the scalar kernels trace through tiles or test every primitive).
     pub fn new(
         scene: &crate::scene::Scene,
         camera: &crate::camera::Camera,
         options: &Options,
     ) -> crate::Result<Renderer> {
         let job = match (options.method, options.kernel) {
+            (Method::Default, Kernel::ScalarF32 | Kernel::ScalarF64)
+                if options.accel == Accel::Bvh =>
+            {
+                return Err(crate::Error::usage(
+                    "the BVH is the packet kernel's; the scalar kernels trace through tiles \
+                     or test every primitive",
+                ));
+            }
             (Method::Default, kernel) => Job::Setup(Box::new(Setup::with_accel(
                 kernel,
                 options.accel,
@@ -423,7 +467,7 @@ impl Renderer {
         })
     }
 
-    /// The acceleration in use: `none` for the scalar kernels and the brute-force methods.
+    /// The acceleration in use: `none` for the brute-force methods.
     pub fn accel(&self) -> Accel {
         match &self.job {
             Job::Setup(s) => s.accel(),
