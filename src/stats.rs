@@ -52,6 +52,27 @@ impl Stats {
         (self.width * self.height) as f64 / self.render_best().max(1e-12)
     }
 
+    /// The precision the kernel that ran computes in: `f64` for the oracle and the f64x4
+    /// method, else `f32`.
+    pub fn precision(&self) -> &'static str {
+        if self.kernel == "scalar" || self.method == "f64x4" {
+            "f64"
+        } else {
+            "f32"
+        }
+    }
+
+    /// The precision and SIMD width that ran: rays one at a time for the scalar kernels, f64x4
+    /// lanes for the f64x4 method, else the packet kernel's f32x8 as this build compiles it.
+    pub fn lanes(&self) -> String {
+        match (self.kernel, self.method) {
+            ("scalar", _) => "f64, one ray at a time".into(),
+            ("scalar-f32", _) => "f32, one ray at a time".into(),
+            (_, "f64x4") => "f64 in f64x4 lanes, two per 8-ray packet".into(),
+            _ => format!("f32 in {}", simd_in_use()),
+        }
+    }
+
     /// The `-time` report.
     pub fn text(&self) -> String {
         let (s, t, q) = self.primitives;
@@ -63,12 +84,13 @@ impl Stats {
         );
         let _ = writeln!(
             out,
-            "  kernel {}, method {}, accel {}, {} threads, {}",
+            "  kernel {}, method {}, accel {}, {} thread{}, {}",
             self.kernel,
             self.method,
             self.accel,
             self.threads,
-            simd_in_use()
+            if self.threads == 1 { "" } else { "s" },
+            self.lanes()
         );
         for (name, secs) in &self.phases {
             let _ = writeln!(out, "  {name:<7} {:>10.3} ms", secs * 1e3);
@@ -122,6 +144,8 @@ impl Stats {
             "seed": self.seed,
             "outputs": outputs,
             "simd": simd_in_use(),
+            "precision": self.precision(),
+            "lanes": self.lanes(),
             "phases_s": phases,
             "renders_s": self.renders,
             "render_best_s": self.render_best(),
@@ -184,6 +208,35 @@ mod tests {
             phases: vec![("parse", 0.001), ("render", 0.002)],
             renders: vec![0.004, 0.002, 0.003, 0.010],
         }
+    }
+
+    #[test]
+    fn time_names_the_precision_and_lanes_that_ran_and_counts_threads() {
+        let mut s = stats();
+        assert!(
+            s.text().contains(", 2 threads, f32 in f32x8"),
+            "{}",
+            s.text()
+        );
+        s.threads = 1;
+        s.kernel = "scalar";
+        assert!(
+            s.text().contains(", 1 thread, f64, one ray at a time"),
+            "{}",
+            s.text()
+        );
+        assert_eq!(s.precision(), "f64");
+        s.kernel = "scalar-f32";
+        assert_eq!(
+            (s.precision(), s.lanes().as_str()),
+            ("f32", "f32, one ray at a time")
+        );
+        s.kernel = "simd";
+        s.method = "f64x4";
+        assert_eq!(s.precision(), "f64");
+        assert!(s.lanes().starts_with("f64 in f64x4 lanes"));
+        let j: serde_json::Value = serde_json::from_str(&s.json()).unwrap();
+        assert_eq!(j["precision"], "f64");
     }
 
     #[test]
