@@ -196,6 +196,45 @@ pub fn class_colour(c: u8) -> Option<[u8; 3]> {
     }
 }
 
+/// Unexcused pixels listed by `compare`, at most (README, "Command line").
+pub const LIST_UNEXCUSED: usize = 20;
+/// Half-width in pixels of the square outline drawn around each unexcused pixel in the diff
+/// picture, so that a single pixel is seen in the image at full size.
+pub const OUTLINE_HALF: usize = 4;
+
+impl Report {
+    /// The (x, y) of the unexcused pixels in a `width`-wide image, row by row.
+    pub fn unexcused_pixels(&self, width: usize) -> impl Iterator<Item = (usize, usize)> + '_ {
+        (self.class.iter().enumerate())
+            .filter(|&(_, &c)| c == UNEXCUSED)
+            .map(move |(i, _)| (i % width, i / width))
+    }
+}
+
+/// `compare -o`'s picture: [`marked_render`] with every mismatch in its class colour, and a red
+/// square outline [`OUTLINE_HALF`] pixels out around each unexcused pixel (clipped at the border).
+pub fn diff_picture(report: &Report, oracle: &Frame<f64>) -> Vec<u8> {
+    let (w, h) = (oracle.width, oracle.height);
+    let mut rgb = marked_render(oracle, |i| class_colour(report.class[i]));
+    let red = class_colour(UNEXCUSED).expect("unexcused has a colour");
+    for (x, y) in report.unexcused_pixels(w) {
+        let (x0, y0) = (
+            x.saturating_sub(OUTLINE_HALF),
+            y.saturating_sub(OUTLINE_HALF),
+        );
+        let (x1, y1) = ((x + OUTLINE_HALF).min(w - 1), (y + OUTLINE_HALF).min(h - 1));
+        for py in y0..=y1 {
+            for px in x0..=x1 {
+                let edge = px.abs_diff(x) == OUTLINE_HALF || py.abs_diff(y) == OUTLINE_HALF;
+                if edge {
+                    rgb[(py * w + px) * 3..][..3].copy_from_slice(&red);
+                }
+            }
+        }
+    }
+    rgb
+}
+
 /// An error picture: the oracle's render (random colours) at a third of its brightness, with
 /// `mark(pixel)` painted over the pixels it returns a colour for. `compare -o` and the lab's
 /// error images both use it.

@@ -4,16 +4,11 @@
 use super::load_view;
 use crate::cli::CompareSettings;
 use crate::compare::{
-    EDGE_BAND, Report, TIE_REL, class_colour, compare_method, compare_with, marked_render,
+    EDGE_BAND, LIST_UNEXCUSED, TIE_REL, compare_method, compare_with, diff_picture,
 };
 use crate::error::{Error, Result};
 use crate::output::{self, OutputKind, OutputSet};
-use crate::render::{Frame, Method};
-
-/// The diff image of `compare -o`.
-fn diff_image(report: &Report, oracle: &Frame<f64>) -> Vec<u8> {
-    marked_render(oracle, |i| class_colour(report.class[i]))
-}
+use crate::render::Method;
 
 /// Runs the compare command: prints the report, writes the diff image, fails past tolerance.
 pub(crate) fn compare_command(s: &CompareSettings) -> Result<()> {
@@ -63,6 +58,18 @@ pub(crate) fn compare_command(s: &CompareSettings) -> Result<()> {
         r.unexcused_ppm(),
         s.max_mismatch_ppm
     );
+    if r.unexcused > 0 {
+        let first: Vec<String> = (r.unexcused_pixels(camera.width as usize))
+            .take(LIST_UNEXCUSED)
+            .map(|(x, y)| format!("({x}, {y})"))
+            .collect();
+        let shown = if r.unexcused > LIST_UNEXCUSED {
+            format!("first {LIST_UNEXCUSED}")
+        } else {
+            "all".to_string()
+        };
+        println!("  unexcused at (x, y), {shown}: {}", first.join(" "));
+    }
     println!(
         "depth rel   max {:.3e}, p99 {:.3e} over {} same-id hits",
         r.depth_rel_max, r.depth_rel_p99, r.same_hits
@@ -72,7 +79,7 @@ pub(crate) fn compare_command(s: &CompareSettings) -> Result<()> {
             "--output",
             camera.width,
             camera.height,
-            &diff_image(r, &oracle),
+            &diff_picture(r, &oracle),
         )?;
     }
     set.commit()?;
