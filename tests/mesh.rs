@@ -119,3 +119,51 @@ fn degenerate_mesh_triangles_are_kept_never_hit_and_reported_once() {
             .all(|c| i32::from_le_bytes(c.try_into().unwrap()) != 0)
     );
 }
+
+/// `lanecast -i mesh.obj` renders the mesh alone with the framing camera: every face is a
+/// primitive, the whole mesh is in view (no hit on the image border, and it covers a fair part
+/// of the frame), the image goes beside the OBJ, and a mesh with no extent is refused.
+#[test]
+fn obj_renders_directly_framed_whole() {
+    let dir = TempDir::new("mesh-direct");
+    let bunny = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/meshes/bunny.obj");
+    dir.copy_in(&bunny, "bunny.obj");
+    let scene = load_scene(&dir.join("bunny.obj")).unwrap();
+    assert_eq!(scene.shapes.len(), 3674);
+    for (w, h) in [(320, 180), (200, 200), (180, 320)] {
+        let size = format!("{w}x{h}");
+        let o = run(
+            &dir.path,
+            &["-i", "bunny.obj", "-size", &size, "--ids", "ids.npy"],
+        );
+        assert_success(&o, &size);
+        assert!(dir.join("bunny.png").exists());
+        let ids = read_npy_i32(&dir.join("ids.npy"));
+        let hit = |x: usize, y: usize| ids[y * w + x] >= 0;
+        let border = (0..w).any(|x| hit(x, 0) || hit(x, h - 1))
+            || (0..h).any(|y| hit(0, y) || hit(w - 1, y));
+        assert!(!border, "{size}: the mesh reaches the border");
+        let hits = ids.iter().filter(|&&i| i >= 0).count();
+        assert!(
+            hits > w * h / 50,
+            "{size}: the mesh fills part of the frame ({hits})"
+        );
+    }
+    dir.write("point.obj", "v 1 1 1\nv 1 1 1\nv 1 1 1\nf 1 2 3\n");
+    let o = run(&dir.path, &["-i", "point.obj"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("point.obj: no faces with extent"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+/// The int32 values of a version-1 `.npy` file (header length in bytes 8..10).
+fn read_npy_i32(path: &std::path::Path) -> Vec<i32> {
+    let b = std::fs::read(path).unwrap();
+    let start = 10 + u16::from_le_bytes([b[8], b[9]]) as usize;
+    (b[start..].chunks_exact(4))
+        .map(|c| i32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+        .collect()
+}

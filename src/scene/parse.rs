@@ -59,6 +59,10 @@ pub fn load_scene(path: &Path) -> Result<Scene> {
 /// [`load_scene`], with the path of every mesh file the scene read, in the order of its
 /// `mesh` lines (as resolved: relative to the scene's folder).
 pub fn load_scene_meshes(path: &Path) -> Result<(Scene, Vec<PathBuf>)> {
+    let is_obj = path.extension().and_then(|e| e.to_str());
+    if is_obj.is_some_and(|e| e.eq_ignore_ascii_case("obj")) {
+        return load_obj_scene(path).map(|scene| (scene, Vec::new()));
+    }
     let io_err = |e| Error::io(path, "read scene", e);
     let meta = std::fs::metadata(path).map_err(io_err)?;
     if meta.len() > MAX_SCENE_BYTES {
@@ -303,6 +307,62 @@ fn join(
         shapes,
         lines,
         warnings,
+    })
+}
+
+/// Half the angle within which [`framing_camera`] keeps a mesh's bounding sphere: 15 degrees,
+/// which fits the default 60-degree horizontal field of view on images up to 2.15:1 wide.
+const FRAMING_HALF_ANGLE_DEG: f64 = 15.0;
+
+/// An OBJ file rendered on its own (`lanecast -i mesh.obj`): its faces as triangles, in file
+/// order, seen by [`framing_camera`]. Shapes carry line 0 (no scene line); range errors name the
+/// face instead (`validate::f32_range`).
+fn load_obj_scene(path: &Path) -> Result<Scene> {
+    let (tris, degenerate) = mesh::load_obj(path, MAX_PRIMITIVES)?;
+    let camera = framing_camera(&tris).ok_or_else(|| Error::InputFile {
+        file: path.to_path_buf(),
+        msg: "no faces with extent to frame; a mesh to render alone needs at least one".into(),
+    })?;
+    let mut warnings = Vec::new();
+    if degenerate > 0 {
+        warnings.push(format!(
+            "{}: {degenerate} degenerate triangles kept (never hit)",
+            path.display()
+        ));
+    }
+    let lines = vec![0; tris.len()];
+    Ok(Scene {
+        source: path.to_path_buf(),
+        camera,
+        shapes: tris.into_iter().map(Shape::Triangle).collect(),
+        lines,
+        warnings,
+    })
+}
+
+/// The default camera of a mesh rendered alone: looking at the centre of the triangles'
+/// bounding box along -z (from the +z side, the usual front of an OBJ model), up +y, from
+/// `R / sin(15 deg)` away (`R`: half the box's diagonal), so the box's bounding sphere fills at
+/// most 15 degrees either side of the view axis: whole in view with the default field of view
+/// (README "Rendering an OBJ directly"). `None` when the box is a point (or there are no faces).
+pub fn framing_camera(tris: &[[DVec3; 3]]) -> Option<CameraSpec> {
+    let mut lo = DVec3::splat(f64::INFINITY);
+    let mut hi = DVec3::splat(f64::NEG_INFINITY);
+    for v in tris.iter().flatten() {
+        lo = lo.min(*v);
+        hi = hi.max(*v);
+    }
+    let radius = (hi - lo).length() / 2.0;
+    if !(radius > 0.0 && radius.is_finite()) {
+        return None;
+    }
+    let look = (lo + hi) / 2.0;
+    let distance = radius / FRAMING_HALF_ANGLE_DEG.to_radians().sin();
+    Some(CameraSpec {
+        eye: look + DVec3::Z * distance,
+        look,
+        up: DVec3::Y,
+        fov_deg: None,
     })
 }
 

@@ -264,6 +264,11 @@ pub fn f32_range(scene: &Scene) -> Result<(), Error> {
         .map(|(i, shape)| (i, shape_f32(shape, eye)))
         .find_first(|(_, r)| r.is_err());
     match first {
+        // line 0: a mesh rendered alone, whose shapes are its faces
+        Some((i, Err(msg))) if scene.lines[i] == 0 => Err(Error::InputFile {
+            file: scene.source.clone(),
+            msg: format!("face {}: {msg}", i + 1),
+        }),
         Some((i, Err(msg))) => Err(Error::input(&scene.source, scene.lines[i], 0, msg)),
         _ => Ok(()),
     }
