@@ -3,10 +3,18 @@
 //! The original assignment's single-dash long options (`-size`, `-fov`, `-cm`, `-cv`, `-time`)
 //! are rewritten to their GNU long forms by [`SINGLE_DASH`] before clap sees them: clap has no
 //! single-dash long options. Only whole tokens are rewritten, so values are never touched.
+//!
+//! After clap, the flags the user typed (clap's `ValueSource::CommandLine`, as opposed to
+//! defaults) are checked against each other before any work: a flag that cannot apply to the
+//! rest (an acceleration the method or kernel does not use, a precision the method or kernel
+//! contradicts, threads a one-thread method cannot use, a seed the palette ignores) is a usage
+//! error (exit 2) that names it and only flags that were typed. README "Valid flag
+//! combinations" is the table of these rules.
 
 use crate::error::{Error, Result};
 use crate::shade::{ColorMode, Variation};
-use clap::{Args, Parser, Subcommand, ValueEnum};
+use clap::parser::ValueSource;
+use clap::{ArgMatches, Args, CommandFactory, FromArgMatches, Parser, Subcommand, ValueEnum};
 use std::ffi::OsString;
 use std::path::PathBuf;
 
@@ -85,11 +93,13 @@ struct View {
     /// (single-dash form: -fov).
     #[arg(long, value_name = "DEGREES", allow_negative_numbers = true)]
     fov: Option<f64>,
-    /// Worker threads [default: all cores].
+    /// Worker threads [default: all cores]. A render with a method other than the default
+    /// runs on one thread and takes no --threads above 1.
     #[arg(long, value_name = "N")]
     threads: Option<usize>,
-    /// Packet kernel acceleration: auto (tiles from 2 primitives on), none (test every
-    /// primitive), tiles (primitives binned into screen tiles, nearest first), bvh.
+    /// Acceleration: auto (tiles from 2 primitives on), none (test every primitive), tiles
+    /// (primitives binned into screen tiles, nearest first), bvh (simd kernel only). Methods
+    /// other than the default take none or auto.
     #[arg(long, value_enum, default_value = "auto")]
     accel: AccelArg,
     /// Intersection method of the simd kernel: eplane+stable (the default: edge planes through
@@ -99,7 +109,7 @@ struct View {
           value_parser = ["eplane+stable", "mt", "watertight", "plane", "naive", "world-f32", "f64x4"])]
     method: String,
     /// Precision of the simd kernel's lanes: f32 (f32x8) or f64 (f64x4, two per packet: the
-    /// f64x4 method).
+    /// f64x4 method). With --kernel scalar or scalar-f32, only that kernel's own (f64, f32).
     #[arg(long, value_name = "BITS", default_value = "f32", value_parser = ["f32", "f64"])]
     precision: String,
 }
@@ -146,7 +156,7 @@ struct RenderArgs {
     /// oracle) or scalar-f32.
     #[arg(long, value_enum, default_value = "simd")]
     kernel: KernelArg,
-    /// Seed of the random colour mode.
+    /// Seed of the random colour mode (refused with -cm ordered, which has no seed).
     #[arg(long, value_name = "N", default_value_t = 0)]
     seed: u64,
     /// Also write per-pixel primitive ids (int32, -1 = background) as a (H, W) .npy file.
@@ -195,6 +205,16 @@ impl KernelArg {
             KernelArg::ScalarF32 => "scalar-f32",
         }
     }
+
+    /// The precision a scalar kernel computes in; `None` for the simd kernel, whose lanes
+    /// `--precision` chooses.
+    pub fn precision(self) -> Option<&'static str> {
+        match self {
+            KernelArg::Simd => None,
+            KernelArg::Scalar => Some("f64"),
+            KernelArg::ScalarF32 => Some("f32"),
+        }
+    }
 }
 
 /// What the shared options resolve to.
@@ -241,36 +261,84 @@ pub enum Command {
     Info(String),
 }
 
-/// Parses the full argument list (program name first).
+/// Parses the full argument list (program name first), then checks that every flag the user
+/// typed applies to the others (`view`, `method`, `check_render`; README "Valid flag
+/// combinations") before any work is done: a flag that cannot apply is a usage error naming
+/// it, never dropped.
 pub fn parse(args: impl IntoIterator<Item = OsString>) -> Result<Command> {
-    let cli = match Cli::try_parse_from(translate(args)) {
-        Ok(cli) => cli,
-        Err(e) => {
-            use clap::error::ErrorKind::{DisplayHelp, DisplayVersion};
-            return match e.kind() {
-                DisplayHelp | DisplayVersion => Ok(Command::Info(e.render().to_string())),
-                _ => {
-                    let text = e.render().to_string();
-                    let text = text
-                        .trim_end()
-                        .strip_prefix("error: ")
-                        .unwrap_or(text.trim_end());
-                    Err(Error::usage(text.to_string()))
-                }
-            };
+    let raw: Vec<OsString> = args.into_iter().collect();
+    parse_raw(&raw).map_err(|e| match e {
+        Error::Usage(msg) => Error::Usage(respell(&msg, &raw)),
+        other => other,
+    })
+}
+
+/// `msg` with each GNU long form of [`SINGLE_DASH`] written as the user spelled it: `-cm`
+/// rather than `--color-mode` when the arguments hold `-cm` and not `--color-mode`, so that a
+/// message names the flags as they were typed (clap's own messages included).
+fn respell(msg: &str, raw: &[OsString]) -> String {
+    let mut msg = msg.to_string();
+    for (short, long) in SINGLE_DASH {
+        let typed_long = raw.iter().any(|a| {
+            a.to_str()
+                .is_some_and(|a| a == long || a.starts_with(&format!("{long}=")))
+        });
+        if raw.iter().any(|a| a == short) && !typed_long {
+            msg = msg.replace(long, short);
+        }
+    }
+    msg
+}
+
+fn parse_raw(raw: &[OsString]) -> Result<Command> {
+    let clap_error = |e: clap::Error| {
+        use clap::error::ErrorKind::{DisplayHelp, DisplayVersion};
+        match e.kind() {
+            DisplayHelp | DisplayVersion => Ok(Command::Info(e.render().to_string())),
+            _ => {
+                let text = e.render().to_string();
+                let text = text
+                    .trim_end()
+                    .strip_prefix("error: ")
+                    .unwrap_or(text.trim_end());
+                Err(Error::usage(text.to_string()))
+            }
         }
     };
+    let matches = match Cli::command().try_get_matches_from(translate(raw.iter().cloned())) {
+        Ok(m) => m,
+        Err(e) => return clap_error(e),
+    };
+    let cli = match Cli::from_arg_matches(&matches) {
+        Ok(c) => c,
+        Err(e) => return clap_error(e),
+    };
     match cli.command {
-        Some(Sub::Compare(c)) => Ok(Command::Compare(CompareSettings {
-            view: view(c.view)?,
-            output: c.output,
-            max_mismatch_ppm: c.max_mismatch_ppm,
-        })),
+        Some(Sub::Compare(c)) => {
+            let sub = matches
+                .subcommand_matches("compare")
+                .expect("clap matched the compare subcommand");
+            let typed = Typed { matches: sub };
+            if c.max_mismatch_ppm.is_nan() || c.max_mismatch_ppm < 0.0 {
+                return Err(Error::usage(format!(
+                    "--max-mismatch-ppm {}: must be a number of parts per million, 0 or more",
+                    c.max_mismatch_ppm
+                )));
+            }
+            Ok(Command::Compare(CompareSettings {
+                // compare's render is the simd kernel's, against the f64 scalar oracle
+                view: view(c.view, &typed, KernelArg::Simd)?,
+                output: c.output,
+                max_mismatch_ppm: c.max_mismatch_ppm,
+            }))
+        }
         None => {
+            let typed = Typed { matches: &matches };
             let r = cli.render;
-            let view = view(r.view)?;
+            let flag = method_flag(&r.view, &typed);
+            let view = view(r.view, &typed, r.kernel)?;
             let output = r.output.unwrap_or_else(|| view.input.with_extension("png"));
-            Ok(Command::Render(RenderSettings {
+            let settings = RenderSettings {
                 view,
                 output,
                 color_mode: ColorMode::parse(&r.color_mode).expect("clap checked the value"),
@@ -282,12 +350,38 @@ pub fn parse(args: impl IntoIterator<Item = OsString>) -> Result<Command> {
                 depth: r.depth,
                 repeat: r.repeat,
                 stats: r.stats,
-            }))
+            };
+            check_render(&settings, &typed, &flag)?;
+            Ok(Command::Render(settings))
         }
     }
 }
 
-fn view(v: View) -> Result<ViewSettings> {
+/// Which arguments the user typed (as opposed to clap's defaults).
+struct Typed<'a> {
+    /// The matches of the command being run (the top level, or `compare`).
+    matches: &'a ArgMatches,
+}
+
+impl Typed<'_> {
+    /// Whether the argument with clap id `id` (the field name) was given on the command line.
+    fn has(&self, id: &str) -> bool {
+        self.matches.value_source(id) == Some(ValueSource::CommandLine)
+    }
+}
+
+/// `n` and `noun`, with an `s` unless `n` is 1.
+fn count(n: usize, noun: &str) -> String {
+    if n == 1 {
+        format!("1 {noun}")
+    } else {
+        format!("{n} {noun}s")
+    }
+}
+
+/// The shared options resolved for `kernel` (`simd` for `compare`), refusing the typed
+/// `--accel` that the method or kernel cannot use.
+fn view(v: View, typed: &Typed, kernel: KernelArg) -> Result<ViewSettings> {
     let (width, height) = parse_size(&v.size)?;
     if let Some(fov) = v.fov {
         crate::scene::validate::fov(fov).map_err(|m| Error::usage(format!("--fov {fov}: {m}")))?;
@@ -295,28 +389,119 @@ fn view(v: View) -> Result<ViewSettings> {
     if v.threads == Some(0) {
         return Err(Error::usage("--threads 0: need at least one thread"));
     }
+    let method = method(&v, typed, kernel)?;
+    let accel: crate::accel::Accel = v.accel.into();
+    if method.is_brute_force()
+        && typed.has("accel")
+        && !matches!(v.accel, AccelArg::Auto | AccelArg::None)
+    {
+        return Err(Error::usage(format!(
+            "--accel {}: {} runs the brute-force driver of the accuracy lab, which tests every \
+             primitive with no acceleration; use --accel none (or auto), or the default method",
+            accel.name(),
+            method_flag(&v, typed),
+        )));
+    }
+    // `Renderer::new` refuses the same pair; this is the message the command line shows
+    if kernel != KernelArg::Simd && v.accel == AccelArg::Bvh {
+        return Err(Error::usage(format!(
+            "--accel bvh: the BVH is the simd kernel's; --kernel {} traces through tiles \
+             (--accel tiles, or auto) or tests every primitive (--accel none)",
+            kernel.name()
+        )));
+    }
     Ok(ViewSettings {
         input: v.input.expect("clap requires --input"),
         width,
         height,
         fov: v.fov,
         threads: v.threads,
-        accel: v.accel.into(),
-        method: method(&v.method, &v.precision)?,
+        accel,
+        method,
     })
 }
 
-/// The method named by `--method` and `--precision`.
-fn method(name: &str, precision: &str) -> Result<crate::render::Method> {
-    use crate::render::Method;
-    let m = Method::parse(name).expect("clap checked the name");
-    match (m, precision) {
-        (_, "f32") => Ok(m),
-        (Method::Default | Method::F64x4, _) => Ok(Method::F64x4),
-        _ => Err(Error::usage(format!(
-            "--precision {precision}: f64 packets exist for the default method only (--method {name})"
-        ))),
+/// The typed flag that chose a method other than the default: `--method NAME`, or
+/// `--precision f64` when only that was typed.
+fn method_flag(v: &View, typed: &Typed) -> String {
+    if typed.has("method") {
+        format!("--method {}", v.method)
+    } else {
+        format!("--precision {} (the f64x4 method)", v.precision)
     }
+}
+
+/// The method named by `--method` and `--precision` for `kernel`, refusing the pairs that
+/// contradict each other. The messages name only flags the user typed: a value left at its
+/// default cannot contradict a typed one (the defaults, `simd`, `eplane+stable` and `f32`,
+/// agree with every choice of the other two).
+fn method(v: &View, typed: &Typed, kernel: KernelArg) -> Result<crate::render::Method> {
+    use crate::render::Method;
+    let m = Method::parse(&v.method).expect("clap checked the name");
+    let precision = v.precision.as_str();
+    if let Some(own) = kernel.precision() {
+        // a scalar kernel (typed: the default is simd): it traces with the default method's
+        // formulas in its own precision
+        if m != Method::Default {
+            return Err(Error::usage(format!(
+                "--method {}: methods apply to --kernel simd only; --kernel {} traces one ray at \
+                 a time with the default method ({}) in {own}",
+                m.name(),
+                kernel.name(),
+                Method::Default.name()
+            )));
+        }
+        if typed.has("precision") && precision != own {
+            return Err(Error::usage(format!(
+                "--precision {precision}: --kernel {} computes in {own} (--precision chooses the \
+                 simd kernel's lanes)",
+                kernel.name()
+            )));
+        }
+        return Ok(Method::Default);
+    }
+    match m {
+        Method::Default if precision == "f64" => Ok(Method::F64x4),
+        Method::Default => Ok(m),
+        // a method computes in its own precision; a typed --precision must agree with it
+        _ if typed.has("precision") && precision != m.precision() => {
+            let hint = if precision == "f64" {
+                "; f64 packets exist for the default method only (--method f64x4)"
+            } else {
+                ""
+            };
+            Err(Error::usage(format!(
+                "--precision {precision}: contradicts --method {}, which computes in {}{hint}",
+                m.name(),
+                m.precision()
+            )))
+        }
+        _ => Ok(m),
+    }
+}
+
+/// Refuses the render command's flags that cannot apply to the rest of its settings.
+/// `method_flag` names the typed flag that chose the method ([`method_flag`]).
+fn check_render(s: &RenderSettings, typed: &Typed, method_flag: &str) -> Result<()> {
+    let method = s.view.method;
+    if let Some(n) = s.view.threads
+        && n > 1
+        && method.is_brute_force()
+    {
+        return Err(Error::usage(format!(
+            "--threads {n}: {method_flag} renders on 1 thread, not on {} (it runs the \
+             brute-force driver of the accuracy lab); use --threads 1, or the default method",
+            count(n, "thread")
+        )));
+    }
+    if typed.has("seed") && s.color_mode == ColorMode::Ordered {
+        return Err(Error::usage(format!(
+            "--seed {}: --color-mode ordered colours by the palette, with no seed; --seed applies to the \
+             random colour mode only",
+            s.seed,
+        )));
+    }
+    Ok(())
 }
 
 /// `WIDTHxHEIGHT` within `limits::MAX_SIDE` and `limits::MAX_PIXELS`.
@@ -427,6 +612,92 @@ mod tests {
             Command::Info(t) => assert!(t.contains("Examples:") && t.contains("--color-mode")),
             other => panic!("{other:?}"),
         }
+    }
+
+    /// The usage error of `s`, checking exit code 2.
+    fn refused(s: &str) -> String {
+        let e = parse(args(s)).unwrap_err();
+        assert_eq!(e.exit_code(), 2, "{s}: {e}");
+        e.to_string()
+    }
+
+    #[test]
+    fn combinations_that_cannot_apply_name_the_typed_flags() {
+        for (s, words) in [
+            (
+                "-i s.sc --method mt --accel bvh",
+                &["--accel bvh", "--method mt"][..],
+            ),
+            (
+                "-i s.sc --precision f64 --accel tiles",
+                &["--accel tiles", "--precision f64"],
+            ),
+            (
+                "-i s.sc --method f64x4 --precision f32",
+                &["--precision f32", "--method f64x4"],
+            ),
+            (
+                "-i s.sc --method naive --precision f64",
+                &["--precision f64", "--method naive"],
+            ),
+            (
+                "-i s.sc --kernel scalar --precision f32",
+                &["--precision f32", "--kernel scalar"],
+            ),
+            (
+                "-i s.sc --kernel scalar-f32 --method mt",
+                &["--method mt", "--kernel scalar-f32"],
+            ),
+            (
+                "-i s.sc --kernel scalar --accel bvh",
+                &["--accel bvh", "--kernel scalar"],
+            ),
+            (
+                "-i s.sc --method plane --threads 3",
+                &["--threads 3", "--method plane"],
+            ),
+            ("-i s.sc -cm ordered --seed 2", &["--seed 2", "-cm ordered"]),
+            (
+                "compare -i s.sc --method mt --accel bvh",
+                &["--accel bvh", "--method mt"],
+            ),
+        ] {
+            let msg = refused(s);
+            for w in words {
+                assert!(msg.contains(w), "{s}: {msg}");
+            }
+        }
+        // the default method is never named when --method was not typed
+        assert!(!refused("-i s.sc --kernel scalar --precision f32").contains("--method"));
+        assert!(!refused("-i s.sc --precision f64 --threads 2").contains("--method"));
+    }
+
+    #[test]
+    fn consistent_combinations_resolve() {
+        use crate::accel::Accel;
+        use crate::render::Method;
+        let r = render("-i s.sc --kernel scalar --precision f64 --accel tiles");
+        assert_eq!(
+            (r.kernel, r.view.method),
+            (KernelArg::Scalar, Method::Default)
+        );
+        assert_eq!(r.view.accel, Accel::Tiles);
+        let r = render("-i s.sc --kernel scalar-f32 --precision f32 --method eplane+stable");
+        assert_eq!(r.view.method, Method::Default);
+        assert_eq!(render("-i s.sc --precision f64").view.method, Method::F64x4);
+        assert_eq!(render("-i s.sc --method f64x4").view.method, Method::F64x4);
+        let r = render("-i s.sc --method mt --accel none --threads 1 --precision f32");
+        assert_eq!((r.view.method, r.view.accel), (Method::Mt, Accel::None));
+        assert_eq!(render("-i s.sc --seed 5 -cm random").seed, 5);
+        assert_eq!(render("-i s.sc --threads 4").view.threads, Some(4));
+    }
+
+    #[test]
+    fn messages_spell_single_dash_options_as_typed() {
+        assert!(refused("-i s.sc -size 0x1").starts_with("-size 0x1:"));
+        assert!(refused("-i s.sc --size 0x1").starts_with("--size 0x1:"));
+        assert!(refused("-i s.sc -cm rainbow").contains("'-cm <MODE>'"));
+        assert!(refused("-i s.sc --color-mode=ordered --seed 1").contains("--color-mode"));
     }
 
     #[test]

@@ -687,7 +687,7 @@ fn image_limits_are_refused_before_any_work() {
         ]);
         let err = stderr(&o);
         assert_eq!(o.status.code(), Some(2), "{size}: {err}");
-        assert!(err.starts_with("lanecast: error: --size"), "{err}");
+        assert!(err.starts_with("lanecast: error: -size"), "{err}");
         assert!(t.elapsed().as_secs() < 5, "{size}: refused late");
     }
     assert_eq!(dir.entries(), ["s.sc"]);

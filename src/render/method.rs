@@ -79,6 +79,21 @@ impl Method {
         }
     }
 
+    /// Whether the method runs in a brute-force driver ([`Method::prepare`]): every ray
+    /// against every primitive, no acceleration, on the calling thread. Only the default
+    /// method runs in the renderer proper, with `--accel` and on every thread of the pool.
+    pub fn is_brute_force(self) -> bool {
+        self != Method::Default
+    }
+
+    /// The precision the method computes in: `f64` for [`Method::F64x4`], else `f32`.
+    pub fn precision(self) -> &'static str {
+        match self {
+            Method::F64x4 => "f64",
+            _ => "f32",
+        }
+    }
+
     /// The method whose [`Method::name`] is `s`, or `None`.
     pub fn parse(s: &str) -> Option<Method> {
         Method::ALL.into_iter().find(|m| m.name() == s)
