@@ -426,7 +426,14 @@ fn sigint_during_render_keeps_previous_output() {
             "-o".as_ref(),
             out.as_os_str(),
         ])
-        .args(["-size", "4096x4096", "--kernel", "scalar", "--accel", "none"])
+        .args([
+            "-size",
+            "4096x4096",
+            "--kernel",
+            "scalar",
+            "--accel",
+            "none",
+        ])
         .args(["--threads", "1"])
         .stderr(std::process::Stdio::piped())
         .spawn()
