@@ -60,6 +60,7 @@ pub mod scene;
 pub mod shade;
 pub mod soa;
 pub(crate) mod stats;
+pub(crate) mod words;
 
 pub use accel::Accel;
 pub use camera::Camera;

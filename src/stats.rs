@@ -1,6 +1,7 @@
 //! The record of one render: what ran, on what, and how long each phase took. `-time` prints
 //! it for people (stderr), `--stats FILE.json` writes it for scripts.
 
+use crate::words::count;
 use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Duration;
@@ -79,17 +80,21 @@ impl Stats {
         let mut out = String::new();
         let _ = writeln!(
             out,
-            "lanecast: {} {}x{} ({s} spheres, {t} triangles, {q} quads)",
-            self.scene, self.width, self.height
+            "lanecast: {} {}x{} ({}, {}, {})",
+            self.scene,
+            self.width,
+            self.height,
+            count(s, "sphere", "spheres"),
+            count(t, "triangle", "triangles"),
+            count(q, "quad", "quads")
         );
         let _ = writeln!(
             out,
-            "  kernel {}, method {}, accel {}, {} thread{}, {}",
+            "  kernel {}, method {}, accel {}, {}, {}",
             self.kernel,
             self.method,
             self.accel,
-            self.threads,
-            if self.threads == 1 { "" } else { "s" },
+            count(self.threads, "thread", "threads"),
             self.lanes()
         );
         for (name, secs) in &self.phases {

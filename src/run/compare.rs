@@ -9,6 +9,7 @@ use crate::compare::{
 use crate::error::{Error, Result};
 use crate::output::{self, OutputKind, OutputSet};
 use crate::render::Method;
+use crate::words::count;
 
 /// Runs the compare command: prints the report, writes the diff image, fails past tolerance.
 pub(crate) fn compare_command(s: &CompareSettings) -> Result<()> {
@@ -71,8 +72,10 @@ pub(crate) fn compare_command(s: &CompareSettings) -> Result<()> {
         println!("  unexcused at (x, y), {shown}: {}", first.join(" "));
     }
     println!(
-        "depth rel   max {:.3e}, p99 {:.3e} over {} same-id hits",
-        r.depth_rel_max, r.depth_rel_p99, r.same_hits
+        "depth rel   max {:.3e}, p99 {:.3e} over {}",
+        r.depth_rel_max,
+        r.depth_rel_p99,
+        count(r.same_hits, "same-id hit", "same-id hits")
     );
     if s.output.is_some() {
         set.write_image(
@@ -85,8 +88,12 @@ pub(crate) fn compare_command(s: &CompareSettings) -> Result<()> {
     set.commit()?;
     if r.unexcused_ppm() > s.max_mismatch_ppm {
         return Err(Error::Failed(format!(
-            "{} unexcused id mismatches ({:.1} ppm) exceed --max-mismatch-ppm {}",
-            r.unexcused,
+            "{} ({:.1} ppm) exceed --max-mismatch-ppm {}",
+            count(
+                r.unexcused,
+                "unexcused id mismatch",
+                "unexcused id mismatches"
+            ),
             r.unexcused_ppm(),
             s.max_mismatch_ppm
         )));

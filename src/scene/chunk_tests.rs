@@ -138,8 +138,8 @@ fn sequential_obj(bytes: &[u8], path: &Path, max: usize) -> Result<(Vec<[DVec3; 
                         .and_then(|a| verts.get(a))
                         .ok_or_else(|| {
                             err(format!(
-                                "vertex index {n} is out of range ({} vertices so far)",
-                                verts.len()
+                                "vertex index {n} is out of range ({} so far)",
+                                crate::words::count(verts.len(), "vertex", "vertices")
                             ))
                         })?;
                     face.push(*v);

@@ -411,7 +411,8 @@ impl<'a> Corners<'a> {
         let n = self.c.written(self.start + k);
         let so_far = self.so_far;
         let line = self.c.first_line + self.face.line as usize;
-        let msg = format!("vertex index {n} is out of range ({so_far} vertices so far)");
+        let so_far = crate::words::count(so_far, "vertex", "vertices");
+        let msg = format!("vertex index {n} is out of range ({so_far} so far)");
         Error::input(path, line, 0, msg)
     }
 }

@@ -43,6 +43,7 @@ use super::statement::CAMERA_SYNTAX;
 use super::{CameraSpec, Scene, Shape, mesh};
 use crate::error::{Error, Result};
 use crate::limits::{MAX_PRIMITIVES, MAX_SCENE_BYTES};
+use crate::words::count;
 use glam::DVec3;
 use rayon::prelude::*;
 use std::ops::Range;
@@ -326,8 +327,9 @@ fn load_obj_scene(path: &Path) -> Result<Scene> {
     let mut warnings = Vec::new();
     if degenerate > 0 {
         warnings.push(format!(
-            "{}: {degenerate} degenerate triangles kept (never hit)",
-            path.display()
+            "{}: {} kept (never hit)",
+            path.display(),
+            count(degenerate, "degenerate triangle", "degenerate triangles")
         ));
     }
     let lines = vec![0; tris.len()];
@@ -388,9 +390,10 @@ fn load_mesh(
     })?;
     if degenerate > 0 {
         warnings.push(format!(
-            "{}:{line}: mesh {}: {degenerate} degenerate triangles kept (never hit)",
+            "{}:{line}: mesh {}: {} kept (never hit)",
             file.display(),
-            path.display()
+            path.display(),
+            count(degenerate, "degenerate triangle", "degenerate triangles")
         ));
     }
     Ok(tris)
