@@ -78,9 +78,18 @@ enum Sub {
 
 #[derive(Args, Debug)]
 struct View {
-    /// Scene file (.sc).
+    /// Scene file (.sc), or an OBJ mesh rendered alone with a framing camera (.obj)
     #[arg(short = 'i', long = "input", value_name = "SCENE.sc", required = true)]
     input: Option<PathBuf>,
+    /// Camera position X,Y,Z, replacing the scene's eye (validated as the camera line is)
+    #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true)]
+    eye: Option<String>,
+    /// Point the camera looks at, X,Y,Z, replacing the scene's look
+    #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true)]
+    look: Option<String>,
+    /// Camera up direction X,Y,Z, replacing the scene's up
+    #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true)]
+    up: Option<String>,
     /// Image size WIDTHxHEIGHT, e.g. 800x600 (single-dash form: -size).
     #[arg(
         long,
@@ -229,6 +238,59 @@ pub struct ViewSettings {
     pub accel: crate::accel::Accel,
     /// Intersection method (`--method`, with `--precision f64` meaning `f64x4`).
     pub method: crate::render::Method,
+    /// Camera overrides from `--eye`, `--look`, `--up`, each with the flag as typed.
+    pub camera: CameraOverrides,
+}
+
+/// `--eye`, `--look` and `--up`: each replaces that part of the scene's camera.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct CameraOverrides {
+    pub eye: Option<glam::DVec3>,
+    pub look: Option<glam::DVec3>,
+    pub up: Option<glam::DVec3>,
+}
+
+impl CameraOverrides {
+    /// `spec` with the overrides applied, checked by the camera line's own rules; an error
+    /// names the flags typed.
+    pub fn apply(&self, spec: &mut crate::scene::CameraSpec) -> Result<()> {
+        if *self == CameraOverrides::default() {
+            return Ok(());
+        }
+        spec.eye = self.eye.unwrap_or(spec.eye);
+        spec.look = self.look.unwrap_or(spec.look);
+        spec.up = self.up.unwrap_or(spec.up);
+        crate::scene::validate::camera(spec).map_err(|m| {
+            let flags: Vec<&str> = [
+                ("--eye", self.eye),
+                ("--look", self.look),
+                ("--up", self.up),
+            ]
+            .iter()
+            .filter(|(_, v)| v.is_some())
+            .map(|(f, _)| *f)
+            .collect();
+            Error::usage(format!("{}: {m}", flags.join(", ")))
+        })
+    }
+}
+
+/// A point or direction `X,Y,Z` of `flag`: three finite decimal numbers.
+fn parse_vec3(flag: &str, text: &str) -> Result<glam::DVec3> {
+    let bad = || {
+        Error::usage(format!(
+            "{flag} {text}: expected three finite numbers X,Y,Z"
+        ))
+    };
+    let v: Vec<f64> = text
+        .split(',')
+        .map(|p| p.trim().parse::<f64>().ok().filter(|x| x.is_finite()))
+        .collect::<Option<_>>()
+        .ok_or_else(bad)?;
+    match v[..] {
+        [x, y, z] => Ok(glam::DVec3::new(x, y, z)),
+        _ => Err(bad()),
+    }
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -418,6 +480,19 @@ fn view(v: View, typed: &Typed, kernel: KernelArg) -> Result<ViewSettings> {
         threads: v.threads,
         accel,
         method,
+        camera: CameraOverrides {
+            eye: v
+                .eye
+                .as_deref()
+                .map(|t| parse_vec3("--eye", t))
+                .transpose()?,
+            look: v
+                .look
+                .as_deref()
+                .map(|t| parse_vec3("--look", t))
+                .transpose()?,
+            up: v.up.as_deref().map(|t| parse_vec3("--up", t)).transpose()?,
+        },
     })
 }
 

@@ -6,7 +6,7 @@ use crate::error::{Error, Result};
 use crate::limits::{BYTES_PER_PIXEL, MAX_PIXELS};
 use crate::output::{self, OutputKind, OutputSet};
 use crate::progress;
-use crate::render::{Kernel, Method, Options, Renderer};
+use crate::render::{Kernel, Options, Renderer};
 use crate::shade::shade;
 use crate::stats::{Stats, scene_name, secs};
 use std::path::Path;
@@ -60,13 +60,6 @@ pub(crate) fn render_command(s: &RenderSettings) -> Result<()> {
     output::install_interrupt_cleanup();
     check_memory(s.view.width, s.view.height)?;
     let method = s.view.method;
-    if method != Method::Default && s.kernel != KernelArg::Simd {
-        return Err(Error::usage(format!(
-            "--method {}: methods apply to the simd kernel (--kernel {} is the oracle's own)",
-            method.name(),
-            s.kernel.name()
-        )));
-    }
     let mut set = OutputSet::create(&outputs(s), &[("the input scene", &s.view.input)])?;
     let mut stats = Stats {
         version: env!("CARGO_PKG_VERSION"),
