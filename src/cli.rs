@@ -16,7 +16,7 @@ use crate::shade::{ColorMode, Variation};
 use clap::parser::ValueSource;
 use clap::{ArgMatches, Args, CommandFactory, FromArgMatches, Parser, Subcommand, ValueEnum};
 use std::ffi::OsString;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// The original's single-dash long options and their GNU long forms.
 pub const SINGLE_DASH: [(&str, &str); 5] = [
@@ -399,7 +399,16 @@ fn parse_raw(raw: &[OsString]) -> Result<Command> {
             let r = cli.render;
             let flag = method_flag(&r.view, &typed);
             let view = view(r.view, &typed, r.kernel)?;
-            let output = r.output.unwrap_or_else(|| view.input.with_extension("png"));
+            let output = match r.output {
+                Some(o) => o,
+                None if view.input == Path::new(crate::scene::parse::STDIN) => {
+                    return Err(Error::usage(
+                        "-i -: a scene from standard input has no file name to put the image \
+                         beside; give -o IMAGE",
+                    ));
+                }
+                None => view.input.with_extension("png"),
+            };
             let settings = RenderSettings {
                 view,
                 output,

@@ -60,6 +60,9 @@ pub fn load_scene(path: &Path) -> Result<Scene> {
 /// [`load_scene`], with the path of every mesh file the scene read, in the order of its
 /// `mesh` lines (as resolved: relative to the scene's folder).
 pub fn load_scene_meshes(path: &Path) -> Result<(Scene, Vec<PathBuf>)> {
+    if path == Path::new(STDIN) {
+        return read_stdin_scene();
+    }
     let is_obj = path.extension().and_then(|e| e.to_str());
     if is_obj.is_some_and(|e| e.eq_ignore_ascii_case("obj")) {
         return load_obj_scene(path).map(|scene| (scene, Vec::new()));
@@ -73,6 +76,31 @@ pub fn load_scene_meshes(path: &Path) -> Result<(Scene, Vec<PathBuf>)> {
     let mut meshes = Vec::new();
     let chunk = chunks::chunk_bytes(bytes.len());
     let scene = parse_bytes_meshes(&bytes, path, MAX_PRIMITIVES, chunk, &mut meshes)?;
+    Ok((scene, meshes))
+}
+
+/// The input path that means standard input (`-i -`).
+pub const STDIN: &str = "-";
+/// How a scene read from standard input is named in messages.
+pub const STDIN_NAME: &str = "<stdin>";
+
+/// A scene read from standard input (`-i -`), under the same size limit as a file, named
+/// [`STDIN_NAME`] in messages; its `mesh` paths are relative to the working folder.
+fn read_stdin_scene() -> Result<(Scene, Vec<PathBuf>)> {
+    use std::io::Read;
+    let name = Path::new(STDIN_NAME);
+    let mut bytes = Vec::new();
+    std::io::stdin()
+        .lock()
+        .take(MAX_SCENE_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| Error::io(name, "read scene", e))?;
+    if bytes.len() as u64 > MAX_SCENE_BYTES {
+        return Err(too_big(name, bytes.len() as u64));
+    }
+    let mut meshes = Vec::new();
+    let chunk = chunks::chunk_bytes(bytes.len());
+    let scene = parse_bytes_meshes(&bytes, name, MAX_PRIMITIVES, chunk, &mut meshes)?;
     Ok((scene, meshes))
 }
 

@@ -1,0 +1,74 @@
+//! `-i -`: the scene read from standard input renders as the same file would, its mesh paths
+//! relative to the working folder, its errors named `<stdin>`.
+
+mod common;
+
+use common::*;
+use std::io::Write;
+use std::path::Path;
+use std::process::{Command, Output, Stdio};
+
+/// Runs the binary in `cwd` with `input` on its standard input.
+fn run_stdin(cwd: &Path, args: &[&str], input: &str) -> Output {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_lanecast"))
+        .args(args)
+        .current_dir(cwd)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("cannot start the lanecast binary");
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(input.as_bytes())
+        .unwrap();
+    child.wait_with_output().unwrap()
+}
+
+#[test]
+fn scene_from_stdin_renders_as_the_file_and_finds_meshes_from_the_working_folder() {
+    let dir = TempDir::new("stdin");
+    std::fs::create_dir(dir.join("m")).unwrap();
+    dir.write(
+        "m/quad.obj",
+        "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n",
+    );
+    let text = "camera eye 0 0 5 look 0 0 0 up 0 1 0\nsphere 1 1 1 0.5\nmesh m/quad.obj\n";
+    dir.write("s.sc", text);
+    let o = run_stdin(
+        &dir.path,
+        &["-i", "-", "-o", "a.png", "--ids", "a.npy"],
+        text,
+    );
+    assert_success(&o, "-i -");
+    let o = run(&dir.path, &["-i", "s.sc", "-o", "b.png", "--ids", "b.npy"]);
+    assert_success(&o, "-i s.sc");
+    let read = |n: &str| std::fs::read(dir.join(n)).unwrap();
+    assert_eq!(read("a.npy"), read("b.npy"));
+    assert_eq!(read("a.png"), read("b.png"));
+}
+
+#[test]
+fn stdin_errors_name_stdin_and_need_an_output() {
+    let dir = TempDir::new("stdin-bad");
+    let o = run_stdin(
+        &dir.path,
+        &["-i", "-", "-o", "x.png"],
+        "camera eye 0 0 5 look 0 0 0 up 0 1 0\nsphere 0 0 x 1\n",
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("<stdin>:2:12:"), "{}", stderr(&o));
+    let o = run_stdin(
+        &dir.path,
+        &["-i", "-"],
+        "camera eye 0 0 5 look 0 0 0 up 0 1 0\n",
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("give -o IMAGE"), "{}", stderr(&o));
+    assert!(
+        std::fs::read_dir(&dir.path).unwrap().next().is_none(),
+        "nothing written"
+    );
+}
