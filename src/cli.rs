@@ -12,6 +12,7 @@
 //! combinations" is the table of these rules.
 
 use crate::error::{Error, Result};
+use crate::output::ImageFormat;
 use crate::shade::{ColorMode, Variation};
 use clap::parser::ValueSource;
 use clap::{ArgMatches, Args, CommandFactory, FromArgMatches, Parser, Subcommand, ValueEnum};
@@ -146,9 +147,14 @@ impl From<AccelArg> for crate::accel::Accel {
 struct RenderArgs {
     #[command(flatten)]
     view: View,
-    /// Output image, .png or .bmp [default: the input path with extension .png].
+    /// Output image, .png or .bmp, or - for standard output [default: the input path with
+    /// extension .png].
     #[arg(short = 'o', long = "output", value_name = "IMAGE")]
     output: Option<PathBuf>,
+    /// Image format of -o - (standard output): png or bmp [default: png]. With a file name the
+    /// extension decides, and a --format that disagrees is refused.
+    #[arg(long, value_name = "FORMAT", value_parser = ["png", "bmp"])]
+    format: Option<String>,
     /// Colour per primitive: random (seeded) or ordered (palette by first appearance)
     /// (single-dash form: -cm).
     #[arg(long = "color-mode", value_name = "MODE", default_value = "random",
@@ -300,6 +306,8 @@ pub struct RenderSettings {
     pub color_mode: ColorMode,
     pub variation: Variation,
     pub time: bool,
+    /// `Some(format)` when the image goes to standard output (`-o -`).
+    pub stdout_format: Option<ImageFormat>,
     pub kernel: KernelArg,
     pub seed: u64,
     pub ids: Option<PathBuf>,
@@ -409,6 +417,7 @@ fn parse_raw(raw: &[OsString]) -> Result<Command> {
                 }
                 None => view.input.with_extension("png"),
             };
+            let stdout_format = stdout_format(&output, r.format.as_deref())?;
             let settings = RenderSettings {
                 view,
                 output,
@@ -421,11 +430,34 @@ fn parse_raw(raw: &[OsString]) -> Result<Command> {
                 depth: r.depth,
                 repeat: r.repeat,
                 stats: r.stats,
+                stdout_format,
             };
             check_render(&settings, &typed, &flag)?;
             Ok(Command::Render(settings))
         }
     }
+}
+
+/// The format of an image written to standard output (`-o -`, with `--format`, PNG by default),
+/// or `None` for an image file, whose extension decides (a `--format` that disagrees is refused).
+fn stdout_format(output: &Path, format: Option<&str>) -> Result<Option<ImageFormat>> {
+    let named = |f: &str| match f {
+        "bmp" => ImageFormat::Bmp,
+        _ => ImageFormat::Png,
+    };
+    if output == Path::new("-") {
+        return Ok(Some(format.map_or(ImageFormat::Png, named)));
+    }
+    if let Some(f) = format
+        && crate::output::image_format(output).ok() != Some(named(f))
+    {
+        return Err(Error::usage(format!(
+            "--format {f}: -o {} names a file of another format; --format chooses the format \
+             of -o - (standard output) only",
+            output.display()
+        )));
+    }
+    Ok(None)
 }
 
 /// Which arguments the user typed (as opposed to clap's defaults).

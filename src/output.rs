@@ -84,11 +84,23 @@ fn image_fill<'a>(
             rgb.len()
         )));
     }
+    Ok(move |w: &mut BufWriter<File>| encode_image(w, format, width, height, rgb))
+}
+
+/// Encodes `rgb` (3 bytes per pixel, row 0 at the top) as `format` into `w`: the one encoder
+/// setting of every image lanecast writes (see [`write_image`]).
+pub fn encode_image(
+    w: &mut impl Write,
+    format: ImageFormat,
+    width: u32,
+    height: u32,
+    rgb: &[u8],
+) -> io::Result<()> {
     let as_io = |e: image::ImageError| match e {
         image::ImageError::IoError(e) => e,
         other => io::Error::other(format!("cannot encode image: {other}")),
     };
-    Ok(move |w: &mut BufWriter<File>| match format {
+    match format {
         ImageFormat::Png => {
             PngEncoder::new_with_quality(w, CompressionType::Fast, FilterType::Adaptive)
                 .write_image(rgb, width, height, ExtendedColorType::Rgb8)
@@ -97,7 +109,7 @@ fn image_fill<'a>(
         ImageFormat::Bmp => BmpEncoder::new(w)
             .encode(rgb, width, height, ExtendedColorType::Rgb8)
             .map_err(as_io),
-    })
+    }
 }
 
 /// Writes `bytes` to `path` atomically: temporary file in the same folder, sync, rename.

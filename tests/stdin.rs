@@ -72,3 +72,24 @@ fn stdin_errors_name_stdin_and_need_an_output() {
         "nothing written"
     );
 }
+
+/// `-o -` writes the image to standard output, byte for byte what the file would hold, PNG by
+/// default and BMP with `--format bmp`; a `--format` that disagrees with a file name is refused.
+#[test]
+fn image_to_stdout_is_the_file_bytes_in_the_chosen_format() {
+    let dir = TempDir::new("stdout");
+    dir.copy_in(&seed_scene(2), "s.sc");
+    for (format, ext) in [(None, "png"), (Some("bmp"), "bmp")] {
+        let mut args = vec!["-i", "s.sc", "-o", "-"];
+        args.extend(format.iter().flat_map(|f| ["--format", f]));
+        let o = run(&dir.path, &args);
+        assert_success(&o, "-o -");
+        let file = format!("f.{ext}");
+        assert_success(&run(&dir.path, &["-i", "s.sc", "-o", &file]), &file);
+        assert_eq!(o.stdout, std::fs::read(dir.join(&file)).unwrap(), "{ext}");
+    }
+    let o = run(&dir.path, &["-i", "s.sc", "-o", "g.png", "--format", "bmp"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("--format bmp"), "{}", stderr(&o));
+    assert!(!dir.join("g.png").exists());
+}

@@ -24,7 +24,10 @@ impl From<KernelArg> for Kernel {
 
 /// The outputs the render command writes: (flag, path, kind), the image first.
 fn outputs(s: &RenderSettings) -> Vec<(&'static str, &Path, OutputKind)> {
-    let mut outs = vec![("--output", s.output.as_path(), OutputKind::Image)];
+    let mut outs = Vec::new();
+    if s.stdout_format.is_none() {
+        outs.push(("--output", s.output.as_path(), OutputKind::Image));
+    }
     outs.extend(s.ids.as_deref().map(|p| ("--ids", p, OutputKind::Npy)));
     outs.extend(s.depth.as_deref().map(|p| ("--depth", p, OutputKind::Npy)));
     outs.extend(s.stats.as_deref().map(|p| ("--stats", p, OutputKind::Json)));
@@ -129,7 +132,9 @@ pub(crate) fn render_command(s: &RenderSettings) -> Result<()> {
     lap("shade", &mut stats, &mut clock);
 
     // Into the temporary files; the targets change only in `commit`, all together.
-    set.write_image("--output", s.view.width, s.view.height, &rgb)?;
+    if s.stdout_format.is_none() {
+        set.write_image("--output", s.view.width, s.view.height, &rgb)?;
+    }
     if s.ids.is_some() {
         set.write_npy_i32("--ids", w, h, &frame.ids)?;
     }
@@ -142,6 +147,13 @@ pub(crate) fn render_command(s: &RenderSettings) -> Result<()> {
         set.write_bytes("--stats", stats.json().as_bytes())?;
     }
     set.commit()?;
+    if let Some(format) = s.stdout_format {
+        // `-o -`: after the files, so a failed file leaves nothing half-sent either
+        let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+        output::encode_image(&mut out, format, s.view.width, s.view.height, &rgb)
+            .and_then(|()| std::io::Write::flush(&mut out))
+            .map_err(|e| Error::io("-", "write the image to standard output", e))?;
+    }
     if s.time {
         eprint!("{}", stats.text());
     }
