@@ -366,11 +366,12 @@ fn resolve(path: &Path) -> Option<PathBuf> {
 mod tests {
     use super::*;
 
-    /// A fresh, empty folder under the system temp dir, removed on drop.
-    struct TestDir(PathBuf);
+    /// A fresh, empty folder under the system temp dir, removed on drop (also used by
+    /// `set.rs`'s tests).
+    pub(super) struct TestDir(pub(super) PathBuf);
 
     impl TestDir {
-        fn new(name: &str) -> TestDir {
+        pub(super) fn new(name: &str) -> TestDir {
             static N: AtomicU64 = AtomicU64::new(0);
             let n = N.fetch_add(1, Ordering::Relaxed);
             let dir = std::env::temp_dir()
@@ -381,7 +382,7 @@ mod tests {
         }
 
         /// Names of the entries in the folder, sorted (temporary files included).
-        fn entries(&self) -> Vec<String> {
+        pub(super) fn entries(&self) -> Vec<String> {
             let mut names: Vec<String> = fs::read_dir(&self.0)
                 .unwrap()
                 .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
