@@ -189,7 +189,8 @@ pub fn polygon_lanes<L: Lanes, const N: usize>(
 /// [`polygon_lanes`] with no early exit: every edge is tested and the plane distance computed
 /// for every packet, and the mask may be empty. The same operations give the same bits where a
 /// lane is inside. For packets whose outcome branches cannot predict (tiles' per-packet lists
-/// of small polygons, about a quarter of them hit: README, "Acceleration").
+/// of small polygons: about one test in four hits there, counted with a temporary counter;
+/// README, "Against Embree 3").
 #[inline(always)]
 pub fn polygon_lanes_all<L: Lanes, const N: usize>(k: &PolyK<L::Scalar, N>, d: &[L; 3]) -> (L, L) {
     let mut inside = edge_inside(k, 0, d);
