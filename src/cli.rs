@@ -103,18 +103,20 @@ struct View {
     /// (single-dash form: -fov).
     #[arg(long, value_name = "DEGREES", allow_negative_numbers = true)]
     fov: Option<f64>,
-    /// Worker threads [default: all cores]. A render with a method other than the default
-    /// runs on one thread and takes no --threads above 1.
+    /// Worker threads [default: all cores]. The lab's brute-force methods (mt, watertight,
+    /// plane, naive, world-f32) run on one thread and take no --threads above 1.
     #[arg(long, value_name = "N")]
     threads: Option<usize>,
     /// Acceleration: auto (tiles from 2 primitives on), none (test every primitive), tiles
-    /// (primitives binned into screen tiles, nearest first), bvh (simd kernel only). Methods
-    /// other than the default take none or auto.
+    /// (primitives binned into screen tiles, nearest first), bvh (a bounding volume
+    /// hierarchy). Every kernel and precision takes each; the lab's brute-force methods take
+    /// none or auto.
     #[arg(long, value_enum, default_value = "auto")]
     accel: AccelArg,
     /// Intersection method of the simd kernel: eplane+stable (the default: edge planes through
-    /// the eye, stable spheres), mt, watertight, plane, naive, world-f32, f64x4. Methods other
-    /// than the default run the accuracy lab's brute-force packet driver on one thread.
+    /// the eye, stable spheres), mt, watertight, plane, naive, world-f32, f64x4. f64x4 takes
+    /// --accel and every thread; the others run the accuracy lab's brute-force packet driver
+    /// on one thread.
     #[arg(long, value_name = "METHOD", default_value = "eplane+stable",
           value_parser = ["eplane+stable", "mt", "watertight", "plane", "naive", "world-f32", "f64x4"])]
     method: String,
@@ -505,14 +507,6 @@ fn view(v: View, typed: &Typed, kernel: KernelArg) -> Result<ViewSettings> {
             method_flag(&v, typed),
         )));
     }
-    // `Renderer::new` refuses the same pair; this is the message the command line shows
-    if kernel != KernelArg::Simd && v.accel == AccelArg::Bvh {
-        return Err(Error::usage(format!(
-            "--accel bvh: the BVH is the simd kernel's; --kernel {} traces through tiles \
-             (--accel tiles, or auto) or tests every primitive (--accel none)",
-            kernel.name()
-        )));
-    }
     Ok(ViewSettings {
         input: v.input.expect("clap requires --input"),
         width,
@@ -745,10 +739,6 @@ mod tests {
                 &["--accel bvh", "--method mt"][..],
             ),
             (
-                "-i s.sc --precision f64 --accel tiles",
-                &["--accel tiles", "--precision f64"],
-            ),
-            (
                 "-i s.sc --method f64x4 --precision f32",
                 &["--precision f32", "--method f64x4"],
             ),
@@ -763,10 +753,6 @@ mod tests {
             (
                 "-i s.sc --kernel scalar-f32 --method mt",
                 &["--method mt", "--kernel scalar-f32"],
-            ),
-            (
-                "-i s.sc --kernel scalar --accel bvh",
-                &["--accel bvh", "--kernel scalar"],
             ),
             (
                 "-i s.sc --method plane --threads 3",
@@ -785,7 +771,7 @@ mod tests {
         }
         // the default method is never named when --method was not typed
         assert!(!refused("-i s.sc --kernel scalar --precision f32").contains("--method"));
-        assert!(!refused("-i s.sc --precision f64 --threads 2").contains("--method"));
+        assert!(!refused("-i s.sc --precision f64 --kernel scalar-f32").contains("--method"));
     }
 
     #[test]
@@ -798,6 +784,15 @@ mod tests {
             (KernelArg::Scalar, Method::Default)
         );
         assert_eq!(r.view.accel, Accel::Tiles);
+        // every kernel and precision takes every acceleration and every thread
+        for s in [
+            "-i s.sc --kernel scalar --accel bvh --threads 2",
+            "-i s.sc --kernel scalar-f32 --accel bvh",
+            "-i s.sc --precision f64 --accel tiles --threads 2",
+            "-i s.sc --method f64x4 --accel bvh",
+        ] {
+            assert!(parse(args(s)).is_ok(), "{s}");
+        }
         let r = render("-i s.sc --kernel scalar-f32 --precision f32 --method eplane+stable");
         assert_eq!(r.view.method, Method::Default);
         assert_eq!(render("-i s.sc --precision f64").view.method, Method::F64x4);

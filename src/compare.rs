@@ -17,11 +17,10 @@ use crate::kernel::sphere::{SphereK, sphere_x1};
 use crate::real::V3;
 use crate::render::Method;
 use crate::render::{
-    Frame, PacketScene, f32_depth, render_packet, render_scalar_counting, scalar_tiles,
+    Frame, PacketScene, f32_depth, prepare_f64, render_packet, render_scalar_counting,
 };
 use crate::scene::{Scene, Shape};
 use crate::shade::{ColorMode, Variation, shade};
-use crate::soa::Prepared;
 use glam::DVec3;
 
 /// Two hits closer than this relative distance are a genuine tie. The packet kernel's distances
@@ -139,12 +138,11 @@ pub fn compare_method(scene: &Scene, camera: &Camera, method: Method) -> (Report
 /// Compares a render of `scene` (ids, depths) with the f64 oracle's.
 pub fn compare_frame(scene: &Scene, camera: &Camera, packet: &Frame<f32>) -> (Report, Frame<f64>) {
     let (w, h) = (camera.width as usize, camera.height as usize);
-    let prepared = Prepared::new(scene, camera.eye);
     let t64 = camera.tables::<f64>(1, 1);
     // The oracle traces through the tiles when `auto` would use them: bit-identical to testing
     // every primitive (tests/accel.rs), and seconds instead of minutes on large meshes.
-    let tiles = scalar_tiles(Accel::Auto, scene, &prepared, camera);
-    let oracle = render_scalar_counting(&prepared, &t64, tiles.as_deref(), w, h, None);
+    let (prepared, structure) = prepare_f64(Accel::Auto, scene, camera);
+    let oracle = render_scalar_counting(&prepared, &t64, &structure, w, h, None);
     let mut r = Report {
         pixels: w * h,
         class: vec![0; w * h],

@@ -1,4 +1,5 @@
-//! Accelerations agree: the scalar kernels with `--accel tiles`, and the packet kernel with `--accel bvh` and with `--accel tiles` returns
+//! Accelerations agree: every kernel and precision (the packet kernel, the f64x4 method, the
+//! scalar f64 oracle and scalar-f32) with `--accel bvh` and with `--accel tiles` returns
 //! exactly the ids and depths of `--accel none` (the nearest-hit rule is order-independent, the
 //! BVH's padded boxes never cull a primitive a ray hits, and the tiles' rectangles and near
 //! bounds are conservative), on the seed scenes, random scenes of every type, dense random
@@ -10,7 +11,7 @@ mod common;
 use common::*;
 use glam::DVec3;
 use lanecast::accel::Accel;
-use lanecast::render::{Frame, Kernel, PacketScene, Setup, render_packet};
+use lanecast::render::{Frame, Kernel, Method, PacketScene, Setup, f32_depth, render_packet};
 use lanecast::scene::{Scene, Shape};
 
 fn same_bits(what: &str, w: u32, a: &Frame<f32>, b: &Frame<f32>) {
@@ -27,17 +28,45 @@ fn same_bits(what: &str, w: u32, a: &Frame<f32>, b: &Frame<f32>) {
 
 fn frames_equal(name: &str, scene: &Scene, w: u32, h: u32) {
     let camera = camera_of(scene, w, h);
-    // The scalar kernels (the f64 oracle and scalar-f32) through the tiles, against themselves
-    // testing every primitive.
+    // The scalar kernels (the f64 oracle and scalar-f32) through each structure, against
+    // themselves testing every primitive.
+    let (wu, hu) = (w as usize, h as usize);
     for kernel in [Kernel::ScalarF64, Kernel::ScalarF32] {
         let none = Setup::with_accel(kernel, Accel::None, scene, &camera);
-        let tiles = Setup::with_accel(kernel, Accel::Tiles, scene, &camera);
-        assert_eq!((none.accel(), tiles.accel()), (Accel::None, Accel::Tiles));
-        let (a, b) = (
-            none.render(w as usize, h as usize),
-            tiles.render(w as usize, h as usize),
-        );
-        same_bits(&format!("{name}, {kernel:?} tiles"), w, &a, &b);
+        assert_eq!(none.accel(), Accel::None);
+        let a = none.render(wu, hu);
+        for accel in [Accel::Tiles, Accel::Bvh] {
+            let other = Setup::with_accel(kernel, accel, scene, &camera);
+            assert_eq!(other.accel(), accel);
+            let b = other.render(wu, hu);
+            same_bits(&format!("{name}, {kernel:?} {}", accel.name()), w, &a, &b);
+        }
+    }
+    // The f64x4 method through each structure, f64 depths bit for bit; without acceleration
+    // it is the oracle.
+    let f64x4 = |accel: Accel| Method::F64x4.prepare_with(scene, &camera, accel);
+    let a = f64x4(Accel::None).render();
+    let oracle = Setup::with_accel(Kernel::ScalarF64, Accel::None, scene, &camera);
+    same_bits(
+        &format!("{name}, f64x4 = oracle"),
+        w,
+        &oracle.render(wu, hu),
+        &f32_depth(a.clone()),
+    );
+    for accel in [Accel::Tiles, Accel::Bvh] {
+        let m = f64x4(accel);
+        assert_eq!(m.accel(), accel);
+        let b = m.render();
+        for i in 0..a.ids.len() {
+            assert_eq!(
+                (a.ids[i], a.depth[i].to_bits()),
+                (b.ids[i], b.depth[i].to_bits()),
+                "{name}, f64x4 {}: pixel ({}, {})",
+                accel.name(),
+                i % wu,
+                i / wu
+            );
+        }
     }
     let tables = camera.tables::<f32>(4, 2);
     let none = PacketScene::new(scene, &camera, Accel::None);

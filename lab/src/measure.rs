@@ -73,8 +73,17 @@ pub struct SceneResult {
     pub rows: Vec<Row>,
 }
 
-/// Renders with `r` repeatedly: the first frame and the best rays/s.
+/// Renders with `r` repeatedly on one thread (a one-thread pool: `f64x4` would otherwise
+/// spread over every core): the first frame and the best rays/s.
 pub fn time_render(r: &dyn MethodRender) -> (LabFrame, f64) {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .expect("a one-thread pool");
+    pool.install(|| time_render_here(r))
+}
+
+fn time_render_here(r: &dyn MethodRender) -> (LabFrame, f64) {
     let start = Instant::now();
     let frame = r.render();
     let mut best = start.elapsed().as_secs_f64();

@@ -18,9 +18,9 @@ use lanecast::kernel::sphere::{SphereK, sphere_x1, sphere_x8};
 use lanecast::kernel::{Hit, Hit8};
 use lanecast::real::V3;
 use lanecast::render::kits::{
-    EPlane, EPlaneWorld, Kit, Kit64, Mt, Naive, Oracle, Plane, PolyFamily, Stable, StableWorld,
-    Watertight,
+    EPlane, EPlaneWorld, Kit, Mt, Naive, Oracle, Plane, PolyFamily, Stable, StableWorld, Watertight,
 };
+use lanecast::render::wide64::Kit64;
 use lanecast_lab::LabScene;
 use lanecast_lab::measure::{Row, accuracy, method_frame, oracle_frame};
 use proptest::prelude::*;

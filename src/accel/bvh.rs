@@ -11,14 +11,22 @@
 //! is still found). Children are visited near first along the split axis, by the sign of lane
 //! 0's direction. Direction components below 1e-30 in magnitude are replaced by +-1e-30 before
 //! inverting, so `0 * inf` (NaN) never occurs; the boxes' padding covers that change.
+//!
+//! One traversal loop (`walk`) serves three forms: 8 f32 rays (the packet kernel), 4 f64 rays
+//! (the f64x4 method) and one ray in f32 or f64 (the scalar kernels, the oracle among them).
 
 use super::build::{self, Built};
-use crate::kernel::Hit8;
+use crate::kernel::lanes::Lanes;
+use crate::kernel::methods::wide64::{Hit4d, polygon_x4d, sphere_x4d};
 use crate::kernel::packet::{polygons_x8, spheres_x8};
+use crate::kernel::polygon::polygon_x1;
+use crate::kernel::sphere::sphere_x1;
+use crate::kernel::{Hit, Hit8};
+use crate::real::{Real, V3};
 use crate::scene::Scene;
 use crate::soa::{Packed, Prepared};
 use glam::DVec3;
-use wide::f32x8;
+use wide::{f32x8, f64x4};
 
 /// One node: box, child or leaf index, and kind (bit 31: leaf; bits 0-1: split axis).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -91,24 +99,26 @@ impl Bvh {
 /// Most nodes waiting on the traversal stack; the build's depth stays far below (checked).
 const STACK: usize = 64;
 
-/// Nearest hits of the rays `d` among the primitives of `p` (packed in `bvh`'s leaf order).
-#[inline]
-pub fn trace_bvh_x8(p: &Packed, bvh: &Bvh, d: &[f32x8; 3], hit: &mut Hit8) {
+/// The traversal every form shares: depth first, near child first by the signs `neg` of the
+/// first ray's direction, a node entered when `enters(node, hit)`, `leaf(ranges, hit)` on each
+/// leaf entered.
+#[inline(always)]
+fn walk<H>(
+    bvh: &Bvh,
+    neg: [bool; 3],
+    hit: &mut H,
+    enters: impl Fn(&Node, &H) -> bool,
+    mut leaf: impl FnMut(&[(u32, u32); 3], &mut H),
+) {
     if bvh.nodes.is_empty() {
         return;
     }
-    let tiny = f32x8::splat(1e-30);
-    let inv = d.map(|c| {
-        let safe = c.abs().simd_lt(tiny).select(tiny.copysign(c), c);
-        f32x8::ONE / safe
-    });
-    let neg = d.map(|c| c.to_array()[0] < 0.0);
     let mut stack = [0u32; STACK];
     let mut sp = 0;
     let mut node = 0usize;
     loop {
         let n = &bvh.nodes[node];
-        if enters(n, &inv, hit.t) {
+        if enters(n, hit) {
             if n.meta & LEAF == 0 {
                 let (left, right) = (node as u32 + 1, n.index);
                 let (near, far) = if neg[(n.meta & 3) as usize] {
@@ -121,10 +131,7 @@ pub fn trace_bvh_x8(p: &Packed, bvh: &Bvh, d: &[f32x8; 3], hit: &mut Hit8) {
                 node = near as usize;
                 continue;
             }
-            let [s, t, q] = bvh.leaves[n.index as usize];
-            spheres_x8(&p.spheres, s.0 as usize..s.1 as usize, d, hit);
-            polygons_x8(&p.triangles, t.0 as usize..t.1 as usize, d, hit);
-            polygons_x8(&p.quads, q.0 as usize..q.1 as usize, d, hit);
+            leaf(&bvh.leaves[n.index as usize], hit);
         }
         if sp == 0 {
             return;
@@ -134,21 +141,136 @@ pub fn trace_bvh_x8(p: &Packed, bvh: &Bvh, d: &[f32x8; 3], hit: &mut Hit8) {
     }
 }
 
-/// Does any lane's ray enter the node's box at a distance no greater than its nearest hit?
+/// `1 / d` lane by lane, components below 1e-30 in magnitude replaced by 1e-30 of their sign
+/// (see the module comment).
 #[inline(always)]
-fn enters(n: &Node, inv: &[f32x8; 3], best: f32x8) -> bool {
-    let t0 = |a: usize| f32x8::splat(n.min[a]) * inv[a];
-    let t1 = |a: usize| f32x8::splat(n.max[a]) * inv[a];
+fn inverse<L: Lanes>(d: &[L; 3]) -> [L; 3] {
+    let tiny = L::splat(L::Scalar::from_f64(1e-30));
+    d.map(|c| {
+        let signed = c.simd_lt(L::ZERO).select(L::ZERO - tiny, tiny);
+        let safe = c.abs().simd_lt(tiny).select(signed, c);
+        L::splat(L::Scalar::ONE) / safe
+    })
+}
+
+/// Does any lane's ray enter the node's box at a distance no greater than its nearest hit
+/// `best`? (The f32 bounds are exact in either lane type.)
+#[inline(always)]
+fn enters<L: Lanes>(n: &Node, inv: &[L; 3], best: L) -> bool {
+    let b = |x: f32| L::splat(L::Scalar::from_f64(x as f64));
+    let t0 = |a: usize| b(n.min[a]) * inv[a];
+    let t1 = |a: usize| b(n.max[a]) * inv[a];
     let (x0, x1, y0, y1, z0, z1) = (t0(0), t1(0), t0(1), t1(1), t0(2), t1(2));
     let near = x0
         .fast_min(x1)
         .fast_max(y0.fast_min(y1))
-        .fast_max(z0.fast_min(z1).fast_max(f32x8::ZERO));
+        .fast_max(z0.fast_min(z1).fast_max(L::ZERO));
     let far = x0
         .fast_max(x1)
         .fast_min(y0.fast_max(y1))
         .fast_min(z0.fast_max(z1));
-    (near.simd_le(far) & near.simd_le(best)).any()
+    (far.simd_ge(near) & best.simd_ge(near)).any()
+}
+
+/// Nearest hits of the rays `d` among the primitives of `p` (packed in `bvh`'s leaf order).
+#[inline]
+pub fn trace_bvh_x8(p: &Packed, bvh: &Bvh, d: &[f32x8; 3], hit: &mut Hit8) {
+    let inv = inverse(d);
+    let neg = d.map(|c| c.first() < 0.0);
+    walk(
+        bvh,
+        neg,
+        hit,
+        |n, h| enters(n, &inv, h.t),
+        |[s, t, q], h| {
+            spheres_x8(&p.spheres, s.0 as usize..s.1 as usize, d, h);
+            polygons_x8(&p.triangles, t.0 as usize..t.1 as usize, d, h);
+            polygons_x8(&p.quads, q.0 as usize..q.1 as usize, d, h);
+        },
+    );
+}
+/// Nearest hits of four f64 rays `d` among the primitives of `p` (in `bvh`'s leaf order), with
+/// the default kernels in f64x4 lanes (`kernel::methods::wide64`, each lane the oracle's
+/// `polygon_x1::<f64>` / `sphere_x1::<f64>` bit for bit). The f64 kernels accept rays within a
+/// far smaller edge tolerance than the f32 ones the padding was sized for, and the slab test
+/// in f64 errs less than in f32, so every box still contains every hit it must.
+#[inline]
+pub fn trace_bvh_x4d(p: &Prepared<f64>, bvh: &Bvh, d: &[f64x4; 3], hit: &mut Hit4d) {
+    let inv = inverse(d);
+    let neg = d.map(|c| c.first() < 0.0);
+    walk(
+        bvh,
+        neg,
+        hit,
+        |n, h| enters(n, &inv, h.t),
+        |[s, t, q], h| {
+            let (sp, tr, qu) = (&p.spheres, &p.triangles, &p.quads);
+            for i in s.0 as usize..s.1 as usize {
+                if let Some((m, tt)) = sphere_x4d(&sp.k[i], d) {
+                    h.update(m, tt, sp.id[i] as f64);
+                }
+            }
+            for i in t.0 as usize..t.1 as usize {
+                if let Some((m, tt)) = polygon_x4d(&tr.k[i], d) {
+                    h.update(m, tt, tr.id[i] as f64);
+                }
+            }
+            for i in q.0 as usize..q.1 as usize {
+                if let Some((m, tt)) = polygon_x4d(&qu.k[i], d) {
+                    h.update(m, tt, qu.id[i] as f64);
+                }
+            }
+        },
+    );
+}
+
+/// Nearest hit of one ray `d` among the primitives of `p` (in `bvh`'s leaf order) with the
+/// scalar kernels in precision `T`: the oracle in f64, `scalar-f32` in f32. The slab test runs
+/// in f64 for both (an f32 direction and f32 distances are exact in f64), which errs less than
+/// the f32 slab test the padding covers; the f32 scalar kernel is the packet kernel's formula
+/// in one lane, and the f64 kernel's hits lie closer to the primitives than the f32 ones.
+/// Proven against `--accel none`, bit for bit, by tests/accel.rs.
+#[inline]
+pub fn trace_bvh_x1<T: Real>(p: &Prepared<T>, bvh: &Bvh, d: V3<T>) -> Hit<T> {
+    let d64 = d.map(|c| c.to_f64());
+    let inv = d64.map(|c| {
+        1.0 / if c.abs() < 1e-30 {
+            1e-30f64.copysign(c)
+        } else {
+            c
+        }
+    });
+    let neg = d64.map(|c| c < 0.0);
+    let mut hit = Hit::NONE;
+    let enters_x1 = |n: &Node, h: &Hit<T>| {
+        let slab = |a: usize| {
+            let (t0, t1) = (n.min[a] as f64 * inv[a], n.max[a] as f64 * inv[a]);
+            (t0.min(t1), t0.max(t1))
+        };
+        let ((x0, x1), (y0, y1), (z0, z1)) = (slab(0), slab(1), slab(2));
+        let near = x0.max(y0).max(z0).max(0.0);
+        let far = x1.min(y1).min(z1);
+        near <= far && near <= h.t.to_f64()
+    };
+    walk(bvh, neg, &mut hit, enters_x1, |[s, t, q], h| {
+        let (sp, tr, qu) = (&p.spheres, &p.triangles, &p.quads);
+        for i in s.0 as usize..s.1 as usize {
+            if let Some(tt) = sphere_x1(&sp.k[i], d) {
+                h.update(tt, sp.id[i]);
+            }
+        }
+        for i in t.0 as usize..t.1 as usize {
+            if let Some(tt) = polygon_x1(&tr.k[i], d) {
+                h.update(tt, tr.id[i]);
+            }
+        }
+        for i in q.0 as usize..q.1 as usize {
+            if let Some(tt) = polygon_x1(&qu.k[i], d) {
+                h.update(tt, qu.id[i]);
+            }
+        }
+    });
+    hit
 }
 
 #[cfg(test)]

@@ -58,6 +58,7 @@
 //! crossing the eye's plane, the eye inside a sphere, rectangles clipped at the border).
 
 use crate::camera::Camera;
+use crate::kernel::methods::wide64::{Hit4d, polygon_x4d, sphere_x4d};
 use crate::kernel::packet::{BLOCK_H, BLOCK_W};
 use crate::kernel::polygon::polygon_lanes_all;
 use crate::kernel::polygon::polygon_x1;
@@ -72,7 +73,7 @@ use crate::soa::Prepared;
 use glam::DVec3;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU32, Ordering};
-use wide::f32x8;
+use wide::{f32x8, f64x4};
 
 /// Tile width in pixels: two packets of 4x2. Measured against 16 and 32 (README, "Acceleration"):
 /// the same on the seed scenes, 15-35% faster at 65,536 primitives.
@@ -462,6 +463,41 @@ impl Tiles {
             }
         }
         hit
+    }
+}
+
+impl Tiles {
+    /// Nearest hits of four f64 rays `d`, pixels `x0..=x1` of row `y` (one tile's), with the
+    /// default kernels in f64x4 lanes (the f64x4 method; each lane is the oracle bit for bit):
+    /// the tile's list, nearest first, left once no entry can win. `p` holds the primitives in
+    /// the order of the `Packed` the tiles were built from. The bounds hold as for
+    /// [`Tiles::trace_x1`] in f64.
+    #[inline]
+    pub fn trace_x4d(
+        &self,
+        p: &Prepared<f64>,
+        [x0, x1, y]: [usize; 3],
+        d: &[f64x4; 3],
+        hit: &mut Hit4d,
+    ) {
+        for e in self.list(x0 / TILE_W, y / TILE_H) {
+            if !hit.t.simd_ge(f64x4::splat(e.near as f64)).any() {
+                return;
+            }
+            let [rx0, ry0, rx1, ry1] = e.rect.map(usize::from);
+            if x1 < rx0 || x0 > rx1 || y < ry0 || y > ry1 {
+                continue;
+            }
+            let i = (e.prim & INDEX_MASK) as usize;
+            let (found, id) = match e.prim >> KIND_SHIFT {
+                SPHERE => (sphere_x4d(&p.spheres.k[i], d), p.spheres.id[i]),
+                TRIANGLE => (polygon_x4d(&p.triangles.k[i], d), p.triangles.id[i]),
+                _ => (polygon_x4d(&p.quads.k[i], d), p.quads.id[i]),
+            };
+            if let Some((mask, t)) = found {
+                hit.update(mask, t, id as f64);
+            }
+        }
     }
 }
 

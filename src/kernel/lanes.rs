@@ -41,6 +41,14 @@ pub trait Lanes:
     fn select(self, t: Self, f: Self) -> Self;
     /// Square root, correctly rounded, lane by lane.
     fn sqrt(self) -> Self;
+    /// Lane-by-lane minimum (either operand where one is NaN: the BVH slab test's use).
+    fn fast_min(self, o: Self) -> Self;
+    /// Lane-by-lane maximum (either operand where one is NaN).
+    fn fast_max(self, o: Self) -> Self;
+    /// Absolute value, lane by lane.
+    fn abs(self) -> Self;
+    /// The value of the first lane.
+    fn first(self) -> Self::Scalar;
 }
 
 macro_rules! lanes {
@@ -79,6 +87,22 @@ macro_rules! lanes {
             #[inline(always)]
             fn sqrt(self) -> Self {
                 <$v>::sqrt(self)
+            }
+            #[inline(always)]
+            fn fast_min(self, o: Self) -> Self {
+                <$v>::fast_min(self, o)
+            }
+            #[inline(always)]
+            fn fast_max(self, o: Self) -> Self {
+                <$v>::fast_max(self, o)
+            }
+            #[inline(always)]
+            fn abs(self) -> Self {
+                <$v>::abs(self)
+            }
+            #[inline(always)]
+            fn first(self) -> $s {
+                self.to_array()[0]
             }
         }
     };

@@ -6,28 +6,28 @@
 //! A [`Kit`] holds one method's constants for one scene (spheres, triangles, quads, each with
 //! its id) and the camera's ray tables; [`Kit::render_x8`] traces 4x2 pixel blocks as 8-lane
 //! packets (lanes past the image border masked, as in the main renderer) and
-//! [`Kit::render_x1`] one ray at a time in f32 with the same method. [`Kit64`] is the f64x4
-//! packet form of the default methods, [`Oracle`] the f64 scalar oracle.
+//! [`Kit::render_x1`] one ray at a time in f32 with the same method. [`Oracle`] is the f64
+//! scalar oracle. The f64x4 packet form of the default methods, which takes the accelerations
+//! and every thread, is `render::wide64`'s `Kit64`.
 
 use super::Frame;
 use crate::camera::{Camera, RayTables};
 use crate::kernel::methods::mt::{MtK, mt_x1, mt_x8};
 use crate::kernel::methods::plane::{PlaneK, plane_x1, plane_x8};
 use crate::kernel::methods::sphere_naive::{NaiveK, naive_x1, naive_x8};
-use crate::kernel::methods::wide64::{Hit4d, dir_x4d, polygon_x4d, sphere_x4d};
 use crate::kernel::methods::woop::{WoopK, WoopRay, WoopRay8, woop_ray, woop_x1, woop_x8};
 use crate::kernel::methods::{quad_split, world};
 use crate::kernel::packet::block_rays;
-use crate::kernel::polygon::{PolyK, QuadK, TriangleK, polygon_x1, polygon_x8};
+use crate::kernel::polygon::{QuadK, TriangleK, polygon_x1, polygon_x8};
 use crate::kernel::scalar::trace_x1;
 use crate::kernel::sphere::{SphereK, sphere_x1, sphere_x8};
 use crate::kernel::{Hit, Hit8, LANES};
 use crate::real::V3;
 use crate::scene::{Scene, Shape};
-use crate::soa::{Group, Prepared};
+use crate::soa::Prepared;
 use glam::DVec3;
 use std::marker::PhantomData;
-use wide::{f32x8, f64x4};
+use wide::f32x8;
 
 /// Pixel block of one packet, as in the main renderer: 4 wide, 2 high.
 pub const BW: usize = 4;
@@ -433,91 +433,6 @@ impl<S: SphereFamily, P: PolyFamily> Kit<S, P> {
                 let hit = self.trace_x1(self.tables.dir_x1(x, y));
                 f.ids[y * w + x] = hit.id;
                 f.depth[y * w + x] = hit.t as f64;
-            }
-        }
-        f
-    }
-}
-
-/// The default methods in f64x4 lanes (`methods::wide64`): a 4x2 block is two f64x4 rows, both
-/// tested against each primitive before the next.
-pub struct Kit64 {
-    /// The oracle's own f64 constants.
-    pub prepared: Prepared<f64>,
-    /// The camera's f64 ray tables, padded to whole 4x2 blocks.
-    pub tables: RayTables<f64>,
-    /// Image width in pixels.
-    pub width: usize,
-    /// Image height in pixels.
-    pub height: usize,
-}
-
-impl Kit64 {
-    /// The f64 constants and ray tables of `scene` seen by `camera` (the setup phase).
-    pub fn new(scene: &Scene, camera: &Camera) -> Kit64 {
-        Kit64 {
-            prepared: Prepared::new(scene, camera.eye),
-            tables: camera.tables(BW as u32, BH as u32),
-            width: camera.width as usize,
-            height: camera.height as usize,
-        }
-    }
-
-    #[inline(always)]
-    fn poly2<const N: usize>(g: &Group<PolyK<f64, N>>, d: &[[f64x4; 3]; 2], hit: &mut [Hit4d; 2]) {
-        for (k, &id) in g.k.iter().zip(&g.id) {
-            for h in 0..2 {
-                if let Some((m, t)) = polygon_x4d(k, &d[h]) {
-                    hit[h].update(m, t, id as f64);
-                }
-            }
-        }
-    }
-
-    /// Nearest hits of two rows of four rays.
-    #[inline]
-    pub fn trace_x4d2(&self, d: &[[f64x4; 3]; 2], hit: &mut [Hit4d; 2]) {
-        let s = &self.prepared.spheres;
-        for (k, &id) in s.k.iter().zip(&s.id) {
-            for h in 0..2 {
-                if let Some((m, t)) = sphere_x4d(k, &d[h]) {
-                    hit[h].update(m, t, id as f64);
-                }
-            }
-        }
-        Self::poly2(&self.prepared.triangles, d, hit);
-        Self::poly2(&self.prepared.quads, d, hit);
-    }
-
-    /// The image in 4x2 blocks of two f64x4 rows, on the calling thread.
-    pub fn render(&self) -> Frame<f64> {
-        let (w, h) = (self.width, self.height);
-        let mut f = Frame::new(w, h, f64::INFINITY);
-        let t = &self.tables;
-        for by in (0..h).step_by(BH) {
-            for bx in (0..w).step_by(BW) {
-                let sx = f64x4::new(std::array::from_fn(|i| t.sx[bx + i]));
-                let row = |r: usize| {
-                    let d = dir_x4d(t, sx, f64x4::splat(t.sy[by + r]));
-                    let inside = |i: usize| bx + i < w && by + r < h;
-                    let active =
-                        f64x4::new(std::array::from_fn(|i| if inside(i) { 1.0 } else { 0.0 }))
-                            .simd_gt(f64x4::ZERO);
-                    (d, Hit4d::new(active))
-                };
-                let ((d0, h0), (d1, h1)) = (row(0), row(1));
-                let mut hit = [h0, h1];
-                self.trace_x4d2(&[d0, d1], &mut hit);
-                for (r, hr) in hit.iter().enumerate() {
-                    let (tt, id) = (hr.t.to_array(), hr.id.to_array());
-                    for i in 0..4 {
-                        let (x, y) = (bx + i, by + r);
-                        if x < w && y < h {
-                            f.ids[y * w + x] = id[i] as i32;
-                            f.depth[y * w + x] = tt[i];
-                        }
-                    }
-                }
             }
         }
         f

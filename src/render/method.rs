@@ -1,14 +1,18 @@
 //! Intersection methods other than the default, selectable with `--method` and `--precision`:
-//! each names a pair of kernels (`kernel::methods`) and [`Method::prepare`] builds its
-//! brute-force driver ([`kits`](super::kits)): every ray against every primitive, on the calling
-//! thread. They exist to be compared (by `lanecast compare` and the accuracy lab), not to be
-//! fast; the default method runs in the renderer proper ([`super::Setup`]).
+//! each names a pair of kernels (`kernel::methods`) and [`Method::prepare`] builds its driver.
+//! The f64x4 method (the default kernels in f64 lanes) takes every acceleration and every
+//! thread (`render::wide64`); the others run a brute-force driver ([`kits`](super::kits)):
+//! every ray against every primitive, on the calling thread. Those exist to be compared (by
+//! `lanecast compare` and the accuracy lab), not to be fast; the default method runs in the
+//! renderer proper ([`super::Setup`]).
 
 use super::Frame;
 use super::kits::{
-    EPlane, EPlaneWorld, Kit, Kit64, Mt, Naive, Oracle, Plane, PolyFamily, SphereFamily, Stable,
+    EPlane, EPlaneWorld, Kit, Mt, Naive, Oracle, Plane, PolyFamily, SphereFamily, Stable,
     StableWorld, Watertight,
 };
+use super::wide64::Kit64;
+use crate::accel::Accel;
 use crate::camera::Camera;
 use crate::scene::Scene;
 
@@ -80,10 +84,10 @@ impl Method {
     }
 
     /// Whether the method runs in a brute-force driver ([`Method::prepare`]): every ray
-    /// against every primitive, no acceleration, on the calling thread. Only the default
-    /// method runs in the renderer proper, with `--accel` and on every thread of the pool.
+    /// against every primitive, no acceleration, on the calling thread. The default method
+    /// (the renderer proper) and the f64x4 method take `--accel` and every thread of the pool.
     pub fn is_brute_force(self) -> bool {
-        self != Method::Default
+        !matches!(self, Method::Default | Method::F64x4)
     }
 
     /// The precision the method computes in: `f64` for [`Method::F64x4`], else `f32`.
@@ -99,8 +103,20 @@ impl Method {
         Method::ALL.into_iter().find(|m| m.name() == s)
     }
 
-    /// Prepares the method for a scene: constants and ray tables (the setup phase).
+    /// Prepares the method for a scene: constants and ray tables (the setup phase), without
+    /// acceleration.
     pub fn prepare(self, scene: &Scene, camera: &Camera) -> Box<dyn MethodRender> {
+        self.prepare_with(scene, camera, Accel::None)
+    }
+
+    /// [`Method::prepare`] with acceleration `accel`, which only the methods that are not
+    /// [`Method::is_brute_force`] use (the others test every primitive whatever it says).
+    pub fn prepare_with(
+        self,
+        scene: &Scene,
+        camera: &Camera,
+        accel: Accel,
+    ) -> Box<dyn MethodRender> {
         match self {
             Method::Default => Box::new(Kit::<Stable, EPlane>::new(scene, camera)),
             Method::Mt => Box::new(Kit::<Stable, Mt>::new(scene, camera)),
@@ -108,15 +124,26 @@ impl Method {
             Method::Plane => Box::new(Kit::<Stable, Plane>::new(scene, camera)),
             Method::Naive => Box::new(Kit::<Naive, EPlane>::new(scene, camera)),
             Method::WorldF32 => Box::new(Kit::<StableWorld, EPlaneWorld>::new(scene, camera)),
-            Method::F64x4 => Box::new(Kit64::new(scene, camera)),
+            Method::F64x4 => Box::new(Kit64::with_accel(scene, camera, accel)),
         }
     }
 }
 
-/// A prepared method: renders the whole image on the calling thread.
+/// A prepared method: renders the whole image.
 pub trait MethodRender: Send + Sync {
-    /// Renders the whole image on the calling thread, depth in f64.
+    /// Renders the whole image, depth in f64: on the calling thread unless
+    /// [`MethodRender::is_parallel`].
     fn render(&self) -> Frame<f64>;
+
+    /// The acceleration in use (`none` for the brute-force drivers).
+    fn accel(&self) -> Accel {
+        Accel::None
+    }
+
+    /// Whether [`MethodRender::render`] spreads over the current rayon pool's threads.
+    fn is_parallel(&self) -> bool {
+        false
+    }
 }
 
 impl<S: SphereFamily, P: PolyFamily> MethodRender for Kit<S, P> {
@@ -128,6 +155,14 @@ impl<S: SphereFamily, P: PolyFamily> MethodRender for Kit<S, P> {
 impl MethodRender for Kit64 {
     fn render(&self) -> Frame<f64> {
         Kit64::render(self)
+    }
+
+    fn accel(&self) -> Accel {
+        Kit64::accel(self)
+    }
+
+    fn is_parallel(&self) -> bool {
+        true
     }
 }
 

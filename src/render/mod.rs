@@ -11,11 +11,13 @@
 
 pub mod kits;
 pub mod method;
+pub mod wide64;
 
 pub use method::Method;
 
+use crate::accel::bvh::{trace_bvh_x1, trace_bvh_x8};
 use crate::accel::tiles::{PacketLists, TILE_H, TILE_W};
-use crate::accel::{Accel, Bvh, Tiles, bvh::trace_bvh_x8};
+use crate::accel::{Accel, Bvh, Tiles};
 use crate::camera::RayTables;
 use crate::kernel::packet::{BLOCK_H, BLOCK_W, block_rays, trace_x8};
 use crate::kernel::scalar::trace_x1;
@@ -240,15 +242,15 @@ pub fn render_scalar<T: Real>(
     width: usize,
     height: usize,
 ) -> Frame<T> {
-    render_scalar_counting(p, tables, None, width, height, None)
+    render_scalar_counting(p, tables, &Structure::None, width, height, None)
 }
 
-/// [`render_scalar`] through `tiles` when given (bit-identical to without), counting finished
-/// strips in `progress`.
+/// [`render_scalar`] through the acceleration `accel` (bit-identical to without), counting
+/// finished strips in `progress`.
 pub(crate) fn render_scalar_counting<T: Real>(
     p: &Prepared<T>,
     tables: &RayTables<T>,
-    tiles: Option<&Tiles>,
+    accel: &Structure,
     width: usize,
     height: usize,
     progress: Option<&AtomicUsize>,
@@ -257,9 +259,11 @@ pub(crate) fn render_scalar_counting<T: Real>(
     for_each_strip(&mut frame, progress, |y_start, ids, depth| {
         for (i, (id, t)) in ids.iter_mut().zip(depth.iter_mut()).enumerate() {
             let (x, y) = (i % width, y_start + i / width);
-            let hit = match tiles {
-                Some(tiles) => tiles.trace_x1(p, (x, y), tables.dir_x1(x, y)),
-                None => trace_x1(p, tables.dir_x1(x, y)),
+            let d = tables.dir_x1(x, y);
+            let hit = match accel {
+                Structure::Tiles(tiles) => tiles.trace_x1(p, (x, y), d),
+                Structure::Bvh(bvh) => trace_bvh_x1(p, bvh, d),
+                Structure::None => trace_x1(p, d),
             };
             *id = hit.id;
             *t = hit.t;
@@ -279,17 +283,50 @@ pub fn f32_depth(f: Frame<f64>) -> Frame<f32> {
     }
 }
 
-/// The tiles the scalar kernels trace through, when `accel` resolves to them (as for the
-/// packet kernel: `auto` picks tiles from `accel::AUTO_MIN` primitives). The scalar kernels have
-/// no BVH traversal: `Accel::Bvh` is refused by [`Renderer::new`].
-pub(crate) fn scalar_tiles(
+/// The acceleration structure the scalar kernels and the f64x4 method trace through, built
+/// over f64 constant records ([`prepare_f64`]). The same structures as the packet kernel's, and
+/// as conservative for the f64 kernels (see `Tiles::trace_x1`, `accel::bvh::trace_bvh_x1`).
+#[derive(Debug, Clone)]
+pub enum Structure {
+    /// Every ray tests every primitive.
+    None,
+    /// Screen tiles, nearest first.
+    Tiles(Box<Tiles>),
+    /// The BVH; the records are in its leaf order.
+    Bvh(Box<Bvh>),
+}
+
+impl Structure {
+    /// The acceleration this is.
+    pub fn accel(&self) -> Accel {
+        match self {
+            Structure::None => Accel::None,
+            Structure::Tiles(_) => Accel::Tiles,
+            Structure::Bvh(_) => Accel::Bvh,
+        }
+    }
+}
+
+/// The f64 constant records of `scene` seen by `camera` and the structure `accel` resolves to
+/// (as for the packet kernel: `auto` picks tiles from `accel::AUTO_MIN` primitives). With the
+/// BVH the records come back in its leaf order.
+pub fn prepare_f64(
     accel: Accel,
     scene: &crate::scene::Scene,
-    p: &Prepared<f64>,
     camera: &crate::camera::Camera,
-) -> Option<Box<Tiles>> {
-    let tiles = accel.resolve(scene.shapes.len()) == Accel::Tiles;
-    tiles.then(|| Box::new(Tiles::new(scene, &Packed::new(p), camera)))
+) -> (Prepared<f64>, Structure) {
+    let p = Prepared::new(scene, camera.eye);
+    match accel.resolve(scene.shapes.len()) {
+        Accel::Tiles => {
+            let tiles = Tiles::new(scene, &Packed::new(&p), camera);
+            (p, Structure::Tiles(Box::new(tiles)))
+        }
+        Accel::Bvh => {
+            let (bvh, reordered) = Bvh::new(&p, scene, camera.eye);
+            (reordered, Structure::Bvh(Box::new(bvh)))
+        }
+        _ => (p, Structure::None),
+    }
 }
 
 /// Which kernel renders.
@@ -307,11 +344,11 @@ pub enum Kernel {
 pub enum Setup {
     /// [`Kernel::Packet`]: the SoA stores (and acceleration), f32 ray tables padded to blocks.
     Packet(Box<PacketScene>, RayTables<f32>),
-    /// [`Kernel::ScalarF32`]: f32 constant records, f32 ray tables and the tiles, if used.
-    ScalarF32(Prepared<f32>, RayTables<f32>, Option<Box<Tiles>>),
-    /// [`Kernel::ScalarF64`]: f64 constant records, f64 ray tables and the tiles, if used
-    /// (the oracle).
-    ScalarF64(Prepared<f64>, RayTables<f64>, Option<Box<Tiles>>),
+    /// [`Kernel::ScalarF32`]: f32 constant records, f32 ray tables and the acceleration.
+    ScalarF32(Prepared<f32>, RayTables<f32>, Structure),
+    /// [`Kernel::ScalarF64`]: f64 constant records, f64 ray tables and the acceleration (the
+    /// oracle).
+    ScalarF64(Prepared<f64>, RayTables<f64>, Structure),
 }
 
 impl Setup {
@@ -324,8 +361,8 @@ impl Setup {
         Setup::with_accel(kernel, Accel::Auto, scene, camera)
     }
 
-    /// As [`Setup::new`], with the packet kernel's acceleration chosen by the caller (the
-    /// scalar kernels trace through the tiles when it resolves to them, else test every primitive).
+    /// As [`Setup::new`], with the acceleration chosen by the caller (every kernel takes every
+    /// acceleration).
     pub fn with_accel(
         kernel: Kernel,
         accel: Accel,
@@ -338,26 +375,22 @@ impl Setup {
                 camera.tables(BLOCK_W as u32, BLOCK_H as u32),
             ),
             Kernel::ScalarF32 => {
-                let p = Prepared::new(scene, camera.eye);
-                let tiles = scalar_tiles(accel, scene, &p, camera);
-                Setup::ScalarF32(p.cast(), camera.tables(1, 1), tiles)
+                let (p, structure) = prepare_f64(accel, scene, camera);
+                Setup::ScalarF32(p.cast(), camera.tables(1, 1), structure)
             }
             Kernel::ScalarF64 => {
-                let p = Prepared::new(scene, camera.eye);
-                let tiles = scalar_tiles(accel, scene, &p, camera);
-                Setup::ScalarF64(p, camera.tables(1, 1), tiles)
+                let (p, structure) = prepare_f64(accel, scene, camera);
+                Setup::ScalarF64(p, camera.tables(1, 1), structure)
             }
         }
     }
 
-    /// The acceleration in use (`none` for the scalar kernels).
+    /// The acceleration in use.
     pub fn accel(&self) -> Accel {
         match self {
             Setup::Packet(p, _) => p.accel(),
-            Setup::ScalarF32(_, _, t) | Setup::ScalarF64(_, _, t) => match t {
-                Some(_) => Accel::Tiles,
-                None => Accel::None,
-            },
+            Setup::ScalarF32(_, _, s) => s.accel(),
+            Setup::ScalarF64(_, _, s) => s.accel(),
         }
     }
 
@@ -376,17 +409,10 @@ impl Setup {
     ) -> Frame<f32> {
         match self {
             Setup::Packet(p, t) => render_packet_blocks::<BLOCK_W>(p, t, width, height, progress),
-            Setup::ScalarF32(p, t, tiles) => {
-                render_scalar_counting(p, t, tiles.as_deref(), width, height, progress)
+            Setup::ScalarF32(p, t, s) => render_scalar_counting(p, t, s, width, height, progress),
+            Setup::ScalarF64(p, t, s) => {
+                f32_depth(render_scalar_counting(p, t, s, width, height, progress))
             }
-            Setup::ScalarF64(p, t, tiles) => f32_depth(render_scalar_counting(
-                p,
-                t,
-                tiles.as_deref(),
-                width,
-                height,
-                progress,
-            )),
         }
     }
 }
@@ -430,21 +456,21 @@ enum Job {
 
 impl Renderer {
     /// Prepares `scene` seen by `camera` (the setup phase). Fails when the options contradict
-    /// each other: a method other than the default with a scalar kernel, or a scalar kernel with
-    /// the BVH (the scalar kernels trace through tiles or test every primitive).
+    /// each other: a method other than the default with a scalar kernel, or an acceleration
+    /// with a brute-force method.
     pub fn new(
         scene: &crate::scene::Scene,
         camera: &crate::camera::Camera,
         options: &Options,
     ) -> crate::Result<Renderer> {
         let job = match (options.method, options.kernel) {
-            (Method::Default, Kernel::ScalarF32 | Kernel::ScalarF64)
-                if options.accel == Accel::Bvh =>
+            (m, Kernel::Packet)
+                if m.is_brute_force() && matches!(options.accel, Accel::Bvh | Accel::Tiles) =>
             {
-                return Err(crate::Error::usage(
-                    "the BVH is the packet kernel's; the scalar kernels trace through tiles \
-                     or test every primitive",
-                ));
+                return Err(crate::Error::usage(format!(
+                    "method {} tests every primitive; it takes no acceleration",
+                    m.name()
+                )));
             }
             (Method::Default, kernel) => Job::Setup(Box::new(Setup::with_accel(
                 kernel,
@@ -452,7 +478,7 @@ impl Renderer {
                 scene,
                 camera,
             ))),
-            (m, Kernel::Packet) => Job::Method(m.prepare(scene, camera)),
+            (m, Kernel::Packet) => Job::Method(m.prepare_with(scene, camera, options.accel)),
             (m, _) => {
                 return Err(crate::Error::usage(format!(
                     "method {} applies to the packet kernel only",
@@ -471,14 +497,18 @@ impl Renderer {
     pub fn accel(&self) -> Accel {
         match &self.job {
             Job::Setup(s) => s.accel(),
-            Job::Method(_) => Accel::None,
+            Job::Method(m) => m.accel(),
         }
     }
 
-    /// Whether the render spreads over the current rayon pool's threads (the default method);
-    /// the other methods trace on the calling thread.
+    /// Whether the render spreads over the current rayon pool's threads (every kernel of the
+    /// default method, and the f64x4 method); the brute-force methods trace on the calling
+    /// thread.
     pub fn is_parallel(&self) -> bool {
-        matches!(self.job, Job::Setup(_))
+        match &self.job {
+            Job::Setup(_) => true,
+            Job::Method(m) => m.is_parallel(),
+        }
     }
 
     /// Renders the frame in the current rayon pool. Depth is reported in f32 by every kernel
