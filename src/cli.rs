@@ -494,6 +494,14 @@ fn view(v: View, typed: &Typed, kernel: KernelArg) -> Result<ViewSettings> {
     if v.threads == Some(0) {
         return Err(Error::usage("--threads 0: need at least one thread"));
     }
+    if let Some(n) = v.threads
+        && n > crate::limits::MAX_THREADS
+    {
+        return Err(Error::usage(format!(
+            "--threads {n}: at most {} threads",
+            crate::limits::MAX_THREADS
+        )));
+    }
     let method = method(&v, typed, kernel)?;
     let accel: crate::accel::Accel = v.accel.into();
     if method.is_brute_force()
@@ -707,6 +715,7 @@ mod tests {
             "-fov 180",
             "-fov -3",
             "--threads 0",
+            "--threads 1025",
             "--kernel gpu",
             "-cm rainbow",
         ] {

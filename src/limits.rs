@@ -21,6 +21,10 @@ pub fn check_size(width: u64, height: u64) -> Result<(), String> {
     Ok(())
 }
 
+/// Most worker threads (`--threads`): each costs a stack and a start; far more than any machine
+/// lanecast targets has cores, and far below what an operating system refuses to start.
+pub const MAX_THREADS: usize = 1024;
+
 /// Working memory per pixel: id (4) + depth (4) + RGB (3) + encoder slack (1).
 pub const BYTES_PER_PIXEL: u64 = 12;
 /// Most primitives in one scene (ids are i32 in the `.npy` buffers; 2^24 keeps every id exact
