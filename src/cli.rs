@@ -120,9 +120,10 @@ struct View {
     #[arg(long, value_name = "METHOD", default_value = "eplane+stable",
           value_parser = ["eplane+stable", "mt", "watertight", "plane", "naive", "world-f32", "f64x4"])]
     method: String,
-    /// Precision of the simd kernel's lanes: f32 (f32x8) or f64 (f64x4, two per packet: the
+    /// Precision of the simd kernel: auto (f32x8 lanes, and each hit f32 cannot hold to 1e-5
+    /// relative decided again in f64), f32 (f32x8 alone) or f64 (f64x4, two per packet: the
     /// f64x4 method). With --kernel scalar or scalar-f32, only that kernel's own (f64, f32).
-    #[arg(long, value_name = "BITS", default_value = "f32", value_parser = ["f32", "f64"])]
+    #[arg(long, value_name = "BITS", default_value = "auto", value_parser = ["auto", "f32", "f64"])]
     precision: String,
 }
 
@@ -580,6 +581,7 @@ fn method(v: &View, typed: &Typed, kernel: KernelArg) -> Result<crate::render::M
     }
     match m {
         Method::Default if precision == "f64" => Ok(Method::F64x4),
+        Method::Default if precision == "auto" => Ok(Method::Auto),
         Method::Default => Ok(m),
         // a method computes in its own precision; a typed --precision must agree with it
         _ if typed.has("precision") && precision != m.precision() => {

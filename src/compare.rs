@@ -53,6 +53,9 @@ pub struct Report {
     pub depth_rel_p99: f64,
     /// Per pixel: 0 agree, [`TIE`], [`EDGE`] or [`UNEXCUSED`].
     pub class: Vec<u8>,
+    /// Pixels `--precision auto` decided again in f64 (row-major, ascending; empty for the
+    /// other methods).
+    pub redecided: Vec<usize>,
 }
 
 impl Report {
@@ -84,11 +87,18 @@ fn poly<const N: usize>(k: Option<PolyK<f64, N>>, d: V3<f64>, slack: f64) -> Opt
 
 /// Classifies one mismatch: 1 tie, 2 edge, 3 unexcused.
 fn classify(scene: &Scene, eye: DVec3, d: V3<f64>, a: i32, b: i32) -> u8 {
+    classify_within(scene, eye, d, a, b, EDGE_BAND)
+}
+
+/// The class ([`TIE`], [`EDGE`] or [`UNEXCUSED`]) of a mismatch between ids `a` and `b` (-1:
+/// background) on the f64 ray `d` from `eye`, with an edge band of `band` radians: what
+/// `compare` does with [`EDGE_BAND`], and the `--precision auto` tests with 1e-6.
+pub fn classify_within(scene: &Scene, eye: DVec3, d: V3<f64>, a: i32, b: i32, band: f64) -> u8 {
     let shape = |id: i32| (id >= 0).then(|| &scene.shapes[id as usize]);
     let (sa, sb) = (shape(a), shape(b));
     if let (Some(sa), Some(sb)) = (sa, sb) {
-        let ta = hit_with_slack(sa, eye, d, EDGE_BAND);
-        let tb = hit_with_slack(sb, eye, d, EDGE_BAND);
+        let ta = hit_with_slack(sa, eye, d, band);
+        let tb = hit_with_slack(sb, eye, d, band);
         if let (Some(ta), Some(tb)) = (ta, tb)
             && (ta - tb).abs() <= TIE_REL * ta.max(tb)
         {
@@ -97,8 +107,7 @@ fn classify(scene: &Scene, eye: DVec3, d: V3<f64>, a: i32, b: i32) -> u8 {
     }
     let near_edge = |s: Option<&Shape>| {
         s.is_some_and(|s| {
-            hit_with_slack(s, eye, d, EDGE_BAND).is_some()
-                != hit_with_slack(s, eye, d, -EDGE_BAND).is_some()
+            hit_with_slack(s, eye, d, band).is_some() != hit_with_slack(s, eye, d, -band).is_some()
         })
     };
     if near_edge(sa) || near_edge(sb) {
@@ -131,8 +140,23 @@ pub fn compare_with(scene: &Scene, camera: &Camera, accel: Accel) -> (Report, Fr
 pub fn compare_method(scene: &Scene, camera: &Camera, method: Method) -> (Report, Frame<f64>) {
     match method {
         Method::Default => compare_with(scene, camera, Accel::Auto),
-        m => compare_frame(scene, camera, &f32_depth(m.prepare(scene, camera).render())),
+        Method::Auto => compare_auto(scene, camera, Accel::Auto),
+        // f64x4 takes the acceleration; the lab's brute-force methods ignore it
+        m => {
+            let frame = m.prepare_with(scene, camera, Accel::Auto).render();
+            compare_frame(scene, camera, &f32_depth(frame))
+        }
     }
+}
+
+/// [`compare`] of `--precision auto` with acceleration `accel`; the report lists the pixels
+/// re-decided in f64 ([`Report::redecided`]).
+pub fn compare_auto(scene: &Scene, camera: &Camera, accel: Accel) -> (Report, Frame<f64>) {
+    let (frame, redecided) =
+        crate::render::Renderer::auto(scene, camera, accel).render_marking(None);
+    let (mut report, oracle) = compare_frame(scene, camera, &frame);
+    report.redecided = redecided;
+    (report, oracle)
 }
 
 /// Compares a render of `scene` (ids, depths) with the f64 oracle's.
@@ -209,11 +233,22 @@ impl Report {
     }
 }
 
-/// `compare -o`'s picture: [`marked_render`] with every mismatch in its class colour, and a red
-/// square outline [`OUTLINE_HALF`] pixels out around each unexcused pixel (clipped at the border).
+/// Colour of the pixels `--precision auto` re-decided in f64 that agree with the oracle
+/// (a mismatch keeps its class colour): magenta.
+pub const REDECIDED_COLOUR: [u8; 3] = [255, 0, 255];
+
+/// `compare -o`'s picture: [`marked_render`] with every mismatch in its class colour, every
+/// other re-decided pixel in [`REDECIDED_COLOUR`], and a red square outline [`OUTLINE_HALF`]
+/// pixels out around each unexcused pixel (clipped at the border).
 pub fn diff_picture(report: &Report, oracle: &Frame<f64>) -> Vec<u8> {
     let (w, h) = (oracle.width, oracle.height);
-    let mut rgb = marked_render(oracle, |i| class_colour(report.class[i]));
+    let mut redecided = vec![false; w * h];
+    for &i in &report.redecided {
+        redecided[i] = true;
+    }
+    let mut rgb = marked_render(oracle, |i| {
+        class_colour(report.class[i]).or(redecided[i].then_some(REDECIDED_COLOUR))
+    });
     let red = class_colour(UNEXCUSED).expect("unexcused has a colour");
     for (x, y) in report.unexcused_pixels(w) {
         let (x0, y0) = (

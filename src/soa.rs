@@ -110,6 +110,93 @@ impl Prepared<f64> {
     }
 }
 
+/// Where the scalar kernels read primitive `i` of each type (the index the acceleration
+/// structures and the packed stores use) with its scene id: a store of records ([`Prepared`]),
+/// or records computed when asked ([`SceneRecords`]).
+pub trait Records<T> {
+    /// How many spheres, triangles and quads.
+    fn counts(&self) -> [usize; 3];
+    /// Sphere `i`'s constants and id.
+    fn sphere(&self, i: usize) -> Option<(SphereK<T>, i32)>;
+    /// Triangle `i`'s constants and id.
+    fn triangle(&self, i: usize) -> Option<(TriangleK<T>, i32)>;
+    /// Quad `i`'s constants and id.
+    fn quad(&self, i: usize) -> Option<(QuadK<T>, i32)>;
+}
+
+impl<T: Copy> Records<T> for Prepared<T> {
+    #[inline(always)]
+    fn counts(&self) -> [usize; 3] {
+        [self.spheres.len(), self.triangles.len(), self.quads.len()]
+    }
+    #[inline(always)]
+    fn sphere(&self, i: usize) -> Option<(SphereK<T>, i32)> {
+        Some((self.spheres.k[i], self.spheres.id[i]))
+    }
+    #[inline(always)]
+    fn triangle(&self, i: usize) -> Option<(TriangleK<T>, i32)> {
+        Some((self.triangles.k[i], self.triangles.id[i]))
+    }
+    #[inline(always)]
+    fn quad(&self, i: usize) -> Option<(QuadK<T>, i32)> {
+        Some((self.quads.k[i], self.quads.id[i]))
+    }
+}
+
+/// The f64 records of the primitives of a [`Packed`] store, computed from the scene's shapes
+/// when asked, with the constructors [`Prepared::new`] uses (so bit for bit the oracle's
+/// constants): the f64 re-decisions of `--precision auto` read a few primitives per pixel and
+/// keep no f64 copy of the scene.
+#[derive(Debug, Clone, Copy)]
+pub struct SceneRecords<'a> {
+    shapes: &'a [Shape],
+    ids: [&'a [f32]; 3],
+    eye: DVec3,
+}
+
+impl<'a> SceneRecords<'a> {
+    /// The records of `packed`'s primitives, which `scene` seen from `eye` was packed from.
+    pub fn new(scene: &'a Scene, packed: &'a Packed, eye: DVec3) -> SceneRecords<'a> {
+        SceneRecords {
+            shapes: &scene.shapes,
+            ids: [&packed.spheres.id, &packed.triangles.id, &packed.quads.id],
+            eye,
+        }
+    }
+
+    #[inline(always)]
+    fn shape(&self, kind: usize, i: usize) -> (&'a Shape, i32) {
+        let id = self.ids[kind][i] as i32;
+        (&self.shapes[id as usize], id)
+    }
+}
+
+impl Records<f64> for SceneRecords<'_> {
+    fn counts(&self) -> [usize; 3] {
+        self.ids.map(|ids| ids.len())
+    }
+    fn sphere(&self, i: usize) -> Option<(SphereK<f64>, i32)> {
+        match self.shape(0, i) {
+            (Shape::Sphere { center, radius }, id) => {
+                Some((SphereK::new(*center, *radius, self.eye), id))
+            }
+            _ => None,
+        }
+    }
+    fn triangle(&self, i: usize) -> Option<(TriangleK<f64>, i32)> {
+        match self.shape(1, i) {
+            (Shape::Triangle(v), id) => TriangleK::triangle(v, self.eye).map(|k| (k, id)),
+            _ => None,
+        }
+    }
+    fn quad(&self, i: usize) -> Option<(QuadK<f64>, i32)> {
+        match self.shape(2, i) {
+            (Shape::Quad(v), id) => QuadK::quad(v, self.eye).map(|k| (k, id)),
+            _ => None,
+        }
+    }
+}
+
 /// Spheres as f32 columns.
 #[derive(Debug, Clone, Default)]
 pub struct Spheres {

@@ -31,6 +31,9 @@ pub struct Stats {
     pub phases: Vec<(&'static str, f64)>,
     /// Render phase of every repeat.
     pub renders: Vec<f64>,
+    /// Pixels whose f32 hit was decided again in f64 (`--precision auto` with the simd kernel;
+    /// `None` where nothing is re-decided).
+    pub redecided: Option<usize>,
 }
 
 impl Stats {
@@ -54,13 +57,21 @@ impl Stats {
     }
 
     /// The precision the kernel that ran computes in: `f64` for the oracle and the f64x4
-    /// method, else `f32`.
+    /// method, `auto` for f32 packets with f64 re-decisions, else `f32`.
     pub fn precision(&self) -> &'static str {
         if self.kernel == "scalar" || self.method == "f64x4" {
             "f64"
+        } else if self.redecided.is_some() {
+            "auto"
         } else {
             "f32"
         }
+    }
+
+    /// The fraction of the image's pixels re-decided in f64 (`None` unless `auto` ran).
+    pub fn redecided_fraction(&self) -> Option<f64> {
+        self.redecided
+            .map(|n| n as f64 / (self.width * self.height).max(1) as f64)
     }
 
     /// The precision and SIMD width that ran: rays one at a time for the scalar kernels, f64x4
@@ -70,6 +81,10 @@ impl Stats {
             ("scalar", _) => "f64, one ray at a time".into(),
             ("scalar-f32", _) => "f32, one ray at a time".into(),
             (_, "f64x4") => "f64 in f64x4 lanes, two per 8-ray packet".into(),
+            _ if self.redecided.is_some() => format!(
+                "f32 in {}, hits f32 cannot hold re-decided in f64 one ray at a time",
+                simd_in_use()
+            ),
             _ => format!("f32 in {}", simd_in_use()),
         }
     }
@@ -116,6 +131,14 @@ impl Stats {
             "  {:.2} Mrays/s (render phase)",
             self.rays_per_s() / 1e6
         );
+        if let (Some(n), Some(f)) = (self.redecided, self.redecided_fraction()) {
+            let _ = writeln!(
+                out,
+                "  re-decided in f64: {} ({:.4}% of the image)",
+                count(n, "pixel", "pixels"),
+                f * 100.0
+            );
+        }
         if let Some(kib) = peak_rss_kib() {
             let _ = writeln!(out, "  peak memory {:.1} MiB", kib as f64 / 1024.0);
         }
@@ -151,6 +174,8 @@ impl Stats {
             "simd": simd_in_use(),
             "precision": self.precision(),
             "lanes": self.lanes(),
+            "redecided_pixels": self.redecided,
+            "redecided_fraction": self.redecided_fraction(),
             "phases_s": phases,
             "renders_s": self.renders,
             "render_best_s": self.render_best(),
@@ -212,6 +237,7 @@ mod tests {
             threads: 2,
             phases: vec![("parse", 0.001), ("render", 0.002)],
             renders: vec![0.004, 0.002, 0.003, 0.010],
+            redecided: None,
         }
     }
 
@@ -242,6 +268,23 @@ mod tests {
         assert!(s.lanes().starts_with("f64 in f64x4 lanes"));
         let j: serde_json::Value = serde_json::from_str(&s.json()).unwrap();
         assert_eq!(j["precision"], "f64");
+        // auto: the precision, the re-decisions, in words and as a fraction of the image
+        s.method = "auto";
+        s.redecided = Some(1);
+        assert_eq!(s.precision(), "auto");
+        let text = s.text();
+        assert!(
+            text.contains("re-decided in f64: 1 pixel (1.0000% of the image)"),
+            "{text}"
+        );
+        assert!(
+            text.contains("hits f32 cannot hold re-decided in f64"),
+            "{text}"
+        );
+        let j: serde_json::Value = serde_json::from_str(&s.json()).unwrap();
+        assert_eq!(j["precision"], "auto");
+        assert_eq!(j["redecided_pixels"].as_u64(), Some(1));
+        assert_eq!(j["redecided_fraction"].as_f64(), Some(0.01));
     }
 
     #[test]

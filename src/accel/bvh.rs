@@ -19,12 +19,11 @@ use super::build::{self, Built};
 use crate::kernel::lanes::Lanes;
 use crate::kernel::methods::wide64::{Hit4d, polygon_x4d, sphere_x4d};
 use crate::kernel::packet::{polygons_x8, spheres_x8};
-use crate::kernel::polygon::polygon_x1;
-use crate::kernel::sphere::sphere_x1;
+use crate::kernel::scalar::ranges_x1;
 use crate::kernel::{Hit, Hit8};
 use crate::real::{Real, V3};
 use crate::scene::Scene;
-use crate::soa::{Packed, Prepared};
+use crate::soa::{Packed, Prepared, Records};
 use glam::DVec3;
 use wide::{f32x8, f64x4};
 
@@ -195,7 +194,7 @@ pub fn trace_bvh_x8(p: &Packed, bvh: &Bvh, d: &[f32x8; 3], hit: &mut Hit8) {
 /// far smaller edge tolerance than the f32 ones the padding was sized for, and the slab test
 /// in f64 errs less than in f32, so every box still contains every hit it must.
 #[inline]
-pub fn trace_bvh_x4d(p: &Prepared<f64>, bvh: &Bvh, d: &[f64x4; 3], hit: &mut Hit4d) {
+pub fn trace_bvh_x4d(p: &impl Records<f64>, bvh: &Bvh, d: &[f64x4; 3], hit: &mut Hit4d) {
     let inv = inverse(d);
     let neg = d.map(|c| c.first() < 0.0);
     walk(
@@ -203,25 +202,41 @@ pub fn trace_bvh_x4d(p: &Prepared<f64>, bvh: &Bvh, d: &[f64x4; 3], hit: &mut Hit
         neg,
         hit,
         |n, h| enters(n, &inv, h.t),
-        |[s, t, q], h| {
-            let (sp, tr, qu) = (&p.spheres, &p.triangles, &p.quads);
-            for i in s.0 as usize..s.1 as usize {
-                if let Some((m, tt)) = sphere_x4d(&sp.k[i], d) {
-                    h.update(m, tt, sp.id[i] as f64);
-                }
-            }
-            for i in t.0 as usize..t.1 as usize {
-                if let Some((m, tt)) = polygon_x4d(&tr.k[i], d) {
-                    h.update(m, tt, tr.id[i] as f64);
-                }
-            }
-            for i in q.0 as usize..q.1 as usize {
-                if let Some((m, tt)) = polygon_x4d(&qu.k[i], d) {
-                    h.update(m, tt, qu.id[i] as f64);
-                }
-            }
-        },
+        |leaf, h| ranges_x4d(p, leaf.map(|(a, b)| a as usize..b as usize), d, h),
     );
+}
+
+/// The spheres, triangles and quads in `ranges` of `p` against four f64 rays `d`, keeping the
+/// nearest hits in `hit` (the f64x4 method's loop, shared by the BVH's leaves and the
+/// re-decisions of `--precision auto` without acceleration).
+#[inline(always)]
+pub fn ranges_x4d(
+    p: &impl Records<f64>,
+    [s, t, q]: [std::ops::Range<usize>; 3],
+    d: &[f64x4; 3],
+    hit: &mut Hit4d,
+) {
+    for i in s {
+        if let Some((k, id)) = p.sphere(i)
+            && let Some((m, tt)) = sphere_x4d(&k, d)
+        {
+            hit.update(m, tt, id as f64);
+        }
+    }
+    for i in t {
+        if let Some((k, id)) = p.triangle(i)
+            && let Some((m, tt)) = polygon_x4d(&k, d)
+        {
+            hit.update(m, tt, id as f64);
+        }
+    }
+    for i in q {
+        if let Some((k, id)) = p.quad(i)
+            && let Some((m, tt)) = polygon_x4d(&k, d)
+        {
+            hit.update(m, tt, id as f64);
+        }
+    }
 }
 
 /// Nearest hit of one ray `d` among the primitives of `p` (in `bvh`'s leaf order) with the
@@ -231,7 +246,7 @@ pub fn trace_bvh_x4d(p: &Prepared<f64>, bvh: &Bvh, d: &[f64x4; 3], hit: &mut Hit
 /// in one lane, and the f64 kernel's hits lie closer to the primitives than the f32 ones.
 /// Proven against `--accel none`, bit for bit, by tests/accel.rs.
 #[inline]
-pub fn trace_bvh_x1<T: Real>(p: &Prepared<T>, bvh: &Bvh, d: V3<T>) -> Hit<T> {
+pub fn trace_bvh_x1<T: Real>(p: &impl Records<T>, bvh: &Bvh, d: V3<T>) -> Hit<T> {
     let d64 = d.map(|c| c.to_f64());
     let inv = d64.map(|c| {
         1.0 / if c.abs() < 1e-30 {
@@ -252,23 +267,8 @@ pub fn trace_bvh_x1<T: Real>(p: &Prepared<T>, bvh: &Bvh, d: V3<T>) -> Hit<T> {
         let far = x1.min(y1).min(z1);
         near <= far && near <= h.t.to_f64()
     };
-    walk(bvh, neg, &mut hit, enters_x1, |[s, t, q], h| {
-        let (sp, tr, qu) = (&p.spheres, &p.triangles, &p.quads);
-        for i in s.0 as usize..s.1 as usize {
-            if let Some(tt) = sphere_x1(&sp.k[i], d) {
-                h.update(tt, sp.id[i]);
-            }
-        }
-        for i in t.0 as usize..t.1 as usize {
-            if let Some(tt) = polygon_x1(&tr.k[i], d) {
-                h.update(tt, tr.id[i]);
-            }
-        }
-        for i in q.0 as usize..q.1 as usize {
-            if let Some(tt) = polygon_x1(&qu.k[i], d) {
-                h.update(tt, qu.id[i]);
-            }
-        }
+    walk(bvh, neg, &mut hit, enters_x1, |leaf, h| {
+        ranges_x1(p, leaf.map(|(a, b)| a as usize..b as usize), d, h)
     });
     hit
 }

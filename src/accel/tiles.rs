@@ -69,7 +69,7 @@ use crate::kernel::sphere::sphere_x8;
 use crate::kernel::{Hit, Hit8};
 use crate::real::{Real, V3};
 use crate::soa::Packed;
-use crate::soa::Prepared;
+use crate::soa::Records;
 use glam::DVec3;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU32, Ordering};
@@ -346,6 +346,31 @@ impl Tiles {
         }
     }
 
+    /// Per tile (row-major), `fold` over its entries' kinds (0 sphere, 1 triangle, 2 quad) and
+    /// indices in their packed stores, from `init`; tiles in parallel.
+    pub fn per_tile<A: Copy + Send + Sync>(
+        &self,
+        init: A,
+        fold: impl Fn(A, usize, usize) -> A + Sync,
+    ) -> Vec<A> {
+        (0..self.start.len() - 1)
+            .into_par_iter()
+            .map(|t| {
+                let list = &self.entries[self.start[t] as usize..self.start[t + 1] as usize];
+                list.iter().fold(init, |a, e| {
+                    let kind = (e.prim >> KIND_SHIFT) as usize;
+                    fold(a, kind, (e.prim & INDEX_MASK) as usize)
+                })
+            })
+            .collect()
+    }
+
+    /// The tile (row-major index) pixel `(x, y)` lies in.
+    #[inline]
+    pub fn tile_index(&self, x: usize, y: usize) -> usize {
+        y / TILE_H * self.cols + x / TILE_W
+    }
+
     fn list(&self, tx: usize, ty: usize) -> &[Entry] {
         let t = ty * self.cols + tx;
         &self.entries[self.start[t] as usize..self.start[t + 1] as usize]
@@ -442,7 +467,12 @@ impl Tiles {
     /// kernel is the packet kernel's formula in one lane. Proven against `--accel none`, bit for
     /// bit, by tests/accel.rs.
     #[inline]
-    pub fn trace_x1<T: Real>(&self, p: &Prepared<T>, (x, y): (usize, usize), d: V3<T>) -> Hit<T> {
+    pub fn trace_x1<T: Real>(
+        &self,
+        p: &impl Records<T>,
+        (x, y): (usize, usize),
+        d: V3<T>,
+    ) -> Hit<T> {
         let mut hit = Hit::NONE;
         for e in self.list(x / TILE_W, y / TILE_H) {
             if hit.t < T::from_f64(e.near as f64) {
@@ -454,9 +484,13 @@ impl Tiles {
             }
             let i = (e.prim & INDEX_MASK) as usize;
             let found = match e.prim >> KIND_SHIFT {
-                SPHERE => sphere_x1(&p.spheres.k[i], d).map(|t| (t, p.spheres.id[i])),
-                TRIANGLE => polygon_x1(&p.triangles.k[i], d).map(|t| (t, p.triangles.id[i])),
-                _ => polygon_x1(&p.quads.k[i], d).map(|t| (t, p.quads.id[i])),
+                SPHERE => p
+                    .sphere(i)
+                    .and_then(|(k, id)| Some((sphere_x1(&k, d)?, id))),
+                TRIANGLE => p
+                    .triangle(i)
+                    .and_then(|(k, id)| Some((polygon_x1(&k, d)?, id))),
+                _ => p.quad(i).and_then(|(k, id)| Some((polygon_x1(&k, d)?, id))),
             };
             if let Some((t, id)) = found {
                 hit.update(t, id);
@@ -475,7 +509,7 @@ impl Tiles {
     #[inline]
     pub fn trace_x4d(
         &self,
-        p: &Prepared<f64>,
+        p: &impl Records<f64>,
         [x0, x1, y]: [usize; 3],
         d: &[f64x4; 3],
         hit: &mut Hit4d,
@@ -489,12 +523,18 @@ impl Tiles {
                 continue;
             }
             let i = (e.prim & INDEX_MASK) as usize;
-            let (found, id) = match e.prim >> KIND_SHIFT {
-                SPHERE => (sphere_x4d(&p.spheres.k[i], d), p.spheres.id[i]),
-                TRIANGLE => (polygon_x4d(&p.triangles.k[i], d), p.triangles.id[i]),
-                _ => (polygon_x4d(&p.quads.k[i], d), p.quads.id[i]),
+            let found = match e.prim >> KIND_SHIFT {
+                SPHERE => p
+                    .sphere(i)
+                    .and_then(|(k, id)| Some((sphere_x4d(&k, d)?, id))),
+                TRIANGLE => p
+                    .triangle(i)
+                    .and_then(|(k, id)| Some((polygon_x4d(&k, d)?, id))),
+                _ => p
+                    .quad(i)
+                    .and_then(|(k, id)| Some((polygon_x4d(&k, d)?, id))),
             };
-            if let Some((mask, t)) = found {
+            if let Some(((mask, t), id)) = found {
                 hit.update(mask, t, id as f64);
             }
         }

@@ -1,30 +1,52 @@
 //! The scalar driver: one ray at a time against every primitive, in f64 (the oracle) or f32 (the
-//! baseline the packet kernel's speedup is measured against). Plain loops, no acceleration.
+//! baseline the packet kernel's speedup is measured against). Plain loops, no acceleration;
+//! the records come from a store or are computed when asked (`soa::Records`).
 
 use crate::kernel::Hit;
 use crate::kernel::polygon::polygon_x1;
 use crate::kernel::sphere::sphere_x1;
 use crate::real::{Real, V3};
-use crate::soa::Prepared;
+use crate::soa::Records;
+use std::ops::Range;
 
-/// Nearest hit along unit direction `d` from the eye.
+/// Nearest hit along unit direction `d` from the eye, among every primitive of `p`.
 #[inline]
-pub fn trace_x1<T: Real>(p: &Prepared<T>, d: V3<T>) -> Hit<T> {
+pub fn trace_x1<T: Real>(p: &impl Records<T>, d: V3<T>) -> Hit<T> {
+    let [s, t, q] = p.counts();
     let mut hit = Hit::NONE;
-    for (k, &id) in p.spheres.k.iter().zip(&p.spheres.id) {
-        if let Some(t) = sphere_x1(k, d) {
-            hit.update(t, id);
-        }
-    }
-    for (k, &id) in p.triangles.k.iter().zip(&p.triangles.id) {
-        if let Some(t) = polygon_x1(k, d) {
-            hit.update(t, id);
-        }
-    }
-    for (k, &id) in p.quads.k.iter().zip(&p.quads.id) {
-        if let Some(t) = polygon_x1(k, d) {
-            hit.update(t, id);
-        }
-    }
+    ranges_x1(p, [0..s, 0..t, 0..q], d, &mut hit);
     hit
+}
+
+/// The spheres, triangles and quads in `ranges` of `p` against the ray `d`, keeping the nearest
+/// hit in `hit` (the scalar kernels' loop, shared with the BVH's leaves).
+#[inline(always)]
+pub fn ranges_x1<T: Real>(
+    p: &impl Records<T>,
+    ranges: [Range<usize>; 3],
+    d: V3<T>,
+    hit: &mut Hit<T>,
+) {
+    let [s, t, q] = ranges;
+    for i in s {
+        if let Some((k, id)) = p.sphere(i)
+            && let Some(t) = sphere_x1(&k, d)
+        {
+            hit.update(t, id);
+        }
+    }
+    for i in t {
+        if let Some((k, id)) = p.triangle(i)
+            && let Some(t) = polygon_x1(&k, d)
+        {
+            hit.update(t, id);
+        }
+    }
+    for i in q {
+        if let Some((k, id)) = p.quad(i)
+            && let Some(t) = polygon_x1(&k, d)
+        {
+            hit.update(t, id);
+        }
+    }
 }

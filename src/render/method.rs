@@ -7,6 +7,7 @@
 //! renderer proper ([`super::Setup`]).
 
 use super::Frame;
+use super::Renderer;
 use super::kits::{
     EPlane, EPlaneWorld, Kit, Mt, Naive, Oracle, Plane, PolyFamily, SphereFamily, Stable,
     StableWorld, Watertight,
@@ -33,11 +34,15 @@ pub enum Method {
     WorldF32,
     /// The default methods in f64x4 packets.
     F64x4,
+    /// The default methods in f32x8 packets, with each hit whose f32 distance cannot be trusted
+    /// to `redecide::TOLERANCE` decided again in f64 (`--precision auto`, the command line's
+    /// default; `render::redecide`).
+    Auto,
 }
 
 impl Method {
     /// Every method, the default first.
-    pub const ALL: [Method; 7] = [
+    pub const ALL: [Method; 8] = [
         Method::Default,
         Method::Mt,
         Method::Watertight,
@@ -45,6 +50,7 @@ impl Method {
         Method::Naive,
         Method::WorldF32,
         Method::F64x4,
+        Method::Auto,
     ];
 
     /// The method's `--method` name (also its label in reports).
@@ -57,6 +63,7 @@ impl Method {
             Method::Naive => "naive",
             Method::WorldF32 => "world-f32",
             Method::F64x4 => "f64x4",
+            Method::Auto => "auto",
         }
     }
 
@@ -80,6 +87,9 @@ impl Method {
                 "default methods, constants computed in f32 from f32 world coordinates"
             }
             Method::F64x4 => "default methods in f64x4 lanes, two per 4x2 packet",
+            Method::Auto => {
+                "default methods in f32x8, hits f32 cannot hold to 1e-5 re-decided in f64 (--precision auto)"
+            }
         }
     }
 
@@ -87,13 +97,15 @@ impl Method {
     /// against every primitive, no acceleration, on the calling thread. The default method
     /// (the renderer proper) and the f64x4 method take `--accel` and every thread of the pool.
     pub fn is_brute_force(self) -> bool {
-        !matches!(self, Method::Default | Method::F64x4)
+        !matches!(self, Method::Default | Method::F64x4 | Method::Auto)
     }
 
-    /// The precision the method computes in: `f64` for [`Method::F64x4`], else `f32`.
+    /// The precision the method computes in: `f64` for [`Method::F64x4`], `auto` for
+    /// [`Method::Auto`], else `f32`.
     pub fn precision(self) -> &'static str {
         match self {
             Method::F64x4 => "f64",
+            Method::Auto => "auto",
             _ => "f32",
         }
     }
@@ -105,18 +117,18 @@ impl Method {
 
     /// Prepares the method for a scene: constants and ray tables (the setup phase), without
     /// acceleration.
-    pub fn prepare(self, scene: &Scene, camera: &Camera) -> Box<dyn MethodRender> {
+    pub fn prepare<'s>(self, scene: &'s Scene, camera: &Camera) -> Box<dyn MethodRender + 's> {
         self.prepare_with(scene, camera, Accel::None)
     }
 
     /// [`Method::prepare`] with acceleration `accel`, which only the methods that are not
     /// [`Method::is_brute_force`] use (the others test every primitive whatever it says).
-    pub fn prepare_with(
+    pub fn prepare_with<'s>(
         self,
-        scene: &Scene,
+        scene: &'s Scene,
         camera: &Camera,
         accel: Accel,
-    ) -> Box<dyn MethodRender> {
+    ) -> Box<dyn MethodRender + 's> {
         match self {
             Method::Default => Box::new(Kit::<Stable, EPlane>::new(scene, camera)),
             Method::Mt => Box::new(Kit::<Stable, Mt>::new(scene, camera)),
@@ -125,6 +137,7 @@ impl Method {
             Method::Naive => Box::new(Kit::<Naive, EPlane>::new(scene, camera)),
             Method::WorldF32 => Box::new(Kit::<StableWorld, EPlaneWorld>::new(scene, camera)),
             Method::F64x4 => Box::new(Kit64::with_accel(scene, camera, accel)),
+            Method::Auto => Box::new(Renderer::auto(scene, camera, accel)),
         }
     }
 }
@@ -143,6 +156,40 @@ pub trait MethodRender: Send + Sync {
     /// Whether [`MethodRender::render`] spreads over the current rayon pool's threads.
     fn is_parallel(&self) -> bool {
         false
+    }
+
+    /// [`MethodRender::render`], also returning the pixels whose hit was decided again in f64
+    /// (row-major indices, ascending; empty but for [`Method::Auto`]).
+    fn render_marking(&self) -> (Frame<f64>, Vec<usize>) {
+        (self.render(), Vec::new())
+    }
+}
+
+impl MethodRender for Renderer<'_> {
+    fn render(&self) -> Frame<f64> {
+        MethodRender::render_marking(self).0
+    }
+
+    fn accel(&self) -> Accel {
+        Renderer::accel(self)
+    }
+
+    fn is_parallel(&self) -> bool {
+        Renderer::is_parallel(self)
+    }
+
+    fn render_marking(&self) -> (Frame<f64>, Vec<usize>) {
+        let (f, marks) = Renderer::render_marking(self, None);
+        let depth = f.depth.iter().map(|&d| d as f64).collect();
+        (
+            Frame {
+                width: f.width,
+                height: f.height,
+                ids: f.ids,
+                depth,
+            },
+            marks,
+        )
     }
 }
 

@@ -11,6 +11,7 @@
 
 pub mod kits;
 pub mod method;
+pub mod redecide;
 pub mod wide64;
 
 pub use method::Method;
@@ -25,6 +26,8 @@ use crate::kernel::{Hit8, LANES};
 use crate::real::Real;
 use crate::soa::{Packed, Prepared};
 use rayon::prelude::*;
+use redecide::Redecide;
+use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use wide::f32x8;
 
@@ -181,7 +184,46 @@ pub fn render_packet_blocks<const BW: usize>(
     height: usize,
     progress: Option<&AtomicUsize>,
 ) -> Frame<f32> {
+    packet_blocks::<BW>(p, tables, width, height, progress, None).0
+}
+
+/// [`render_packet_blocks`], with the f32 hits that cannot be trusted decided again in f64 when
+/// `redo` is given (`--precision auto`); also returns the re-decided pixels (row-major indices,
+/// ascending).
+pub(crate) fn packet_blocks<const BW: usize>(
+    p: &PacketScene,
+    tables: &RayTables<f32>,
+    width: usize,
+    height: usize,
+    progress: Option<&AtomicUsize>,
+    redo: Option<&Redecide>,
+) -> (Frame<f32>, Vec<usize>) {
     let mut frame = Frame::new(width, height, f32::INFINITY);
+    // A strip's walk of re-decisions (auto).
+    let walk = || redo.map(|r| (r, r.walk(&p.packed, p.tiles.as_ref(), p.bvh.as_ref())));
+    let redone = Mutex::new(Vec::new());
+    // Re-decides the block's untrusted lanes (auto), noting their pixels in `mine`.
+    let fix = |walk: &Option<(&Redecide, redecide::Walk)>,
+               (bx, y): (usize, usize),
+               hit: &mut Hit8,
+               mine: &mut Vec<usize>| {
+        if let Some((r, walk)) = walk {
+            let mut m = r.fix_packet(walk, (bx, y, BW), hit);
+            while m != 0 {
+                let lane = m.trailing_zeros() as usize;
+                mine.push((y + lane / BW) * width + bx + lane % BW);
+                m &= m - 1;
+            }
+        }
+    };
+    let note = |mine: Vec<usize>| {
+        if !mine.is_empty() {
+            redone
+                .lock()
+                .unwrap_or_else(|e| e.into_inner())
+                .extend(mine);
+        }
+    };
     // Writes a block's results into its strip (`by`: the block's first row in the strip).
     let store = |ids: &mut [i32], depth: &mut [f32], bx: usize, by: usize, hit: &Hit8| {
         let rows = ids.len() / width;
@@ -200,6 +242,7 @@ pub fn render_packet_blocks<const BW: usize>(
             for_each_strip(&mut frame, progress, |y_start, ids, depth| {
                 let rows = ids.len() / width;
                 let mut lists = PacketLists::default();
+                let (mut mine, walk) = (Vec::new(), walk());
                 for tx in 0..width.div_ceil(TILE_W) {
                     tiles.split_tile((tx, y_start / TILE_H), &mut lists);
                     for by in (0..rows).step_by(BLOCK_H) {
@@ -213,26 +256,33 @@ pub fn render_packet_blocks<const BW: usize>(
                             let mut hit = Hit8::new(active);
                             let k = by / BLOCK_H * (TILE_W / BLOCK_W) + col;
                             tiles.trace_packet_x8(&p.packed, &lists, k, &d, &mut hit);
+                            fix(&walk, (bx, y), &mut hit, &mut mine);
                             store(ids, depth, bx, by, &hit);
                         }
                     }
                 }
+                note(mine);
             })
         }
         _ => for_each_strip(&mut frame, progress, |y_start, ids, depth| {
             let rows = ids.len() / width;
+            let (mut mine, walk) = (Vec::new(), walk());
             for by in (0..rows).step_by(LANES / BW) {
                 for bx in (0..width).step_by(BW) {
                     let (d, active) = block_rays::<BW>(tables, bx, y_start + by, width, height);
                     let mut hit = Hit8::new(active);
                     let y = y_start + by;
                     p.trace_x8([bx, y, bx + BW - 1, y + LANES / BW - 1], &d, &mut hit);
+                    fix(&walk, (bx, y), &mut hit, &mut mine);
                     store(ids, depth, bx, by, &hit);
                 }
             }
+            note(mine);
         }),
     }
-    frame
+    let mut redone = redone.into_inner().unwrap_or_else(|e| e.into_inner());
+    redone.sort_unstable();
+    (frame, redone)
 }
 
 /// Renders one ray at a time with the scalar kernel in precision `T`.
@@ -419,15 +469,16 @@ impl Setup {
 
 /// How to render: which kernel, which acceleration, which intersection method.
 /// `Options::default()` is what the command line does with no flags: 8-lane packets, automatic
-/// acceleration, the default method.
+/// acceleration, the default method with `--precision auto` ([`Method::Auto`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Options {
     /// The kernel (`--kernel`).
     pub kernel: Kernel,
-    /// The acceleration (`--accel`): the packet kernel takes any; the scalar kernels tiles or none.
+    /// The acceleration (`--accel`): every kernel takes any.
     pub accel: Accel,
     /// The intersection method (`--method`, `--precision`); methods other than
-    /// [`Method::Default`] run with the packet kernel only.
+    /// [`Method::Default`] and [`Method::Auto`] run with the packet kernel only, and
+    /// [`Method::Auto`] with a scalar kernel is that kernel in its own precision.
     pub method: Method,
 }
 
@@ -436,33 +487,34 @@ impl Default for Options {
         Options {
             kernel: Kernel::Packet,
             accel: Accel::Auto,
-            method: Method::Default,
+            method: Method::Auto,
         }
     }
 }
 
 /// A scene prepared for one camera and one set of [`Options`]: every per-primitive constant
-/// and acceleration structure is built, so [`Renderer::render`] only traces rays.
-pub struct Renderer {
+/// and acceleration structure is built, so [`Renderer::render`] only traces rays. With
+/// [`Method::Auto`] it borrows the scene, whose shapes the f64 re-decisions read.
+pub struct Renderer<'s> {
     width: usize,
     height: usize,
-    job: Job,
+    job: Job<'s>,
 }
 
-enum Job {
-    Setup(Box<Setup>),
-    Method(Box<dyn method::MethodRender>),
+enum Job<'s> {
+    Setup(Box<Setup>, Option<Box<Redecide<'s>>>),
+    Method(Box<dyn method::MethodRender + 's>),
 }
 
-impl Renderer {
+impl<'s> Renderer<'s> {
     /// Prepares `scene` seen by `camera` (the setup phase). Fails when the options contradict
     /// each other: a method other than the default with a scalar kernel, or an acceleration
     /// with a brute-force method.
     pub fn new(
-        scene: &crate::scene::Scene,
+        scene: &'s crate::scene::Scene,
         camera: &crate::camera::Camera,
         options: &Options,
-    ) -> crate::Result<Renderer> {
+    ) -> crate::Result<Renderer<'s>> {
         let job = match (options.method, options.kernel) {
             (m, Kernel::Packet)
                 if m.is_brute_force() && matches!(options.accel, Accel::Bvh | Accel::Tiles) =>
@@ -472,12 +524,13 @@ impl Renderer {
                     m.name()
                 )));
             }
-            (Method::Default, kernel) => Job::Setup(Box::new(Setup::with_accel(
-                kernel,
-                options.accel,
-                scene,
-                camera,
-            ))),
+            (Method::Auto, Kernel::Packet) => {
+                return Ok(Renderer::auto(scene, camera, options.accel));
+            }
+            (Method::Default | Method::Auto, kernel) => Job::Setup(
+                Box::new(Setup::with_accel(kernel, options.accel, scene, camera)),
+                None,
+            ),
             (m, Kernel::Packet) => Job::Method(m.prepare_with(scene, camera, options.accel)),
             (m, _) => {
                 return Err(crate::Error::usage(format!(
@@ -493,10 +546,30 @@ impl Renderer {
         })
     }
 
+    /// The packet kernel with the f32 hits that cannot be trusted decided again in f64
+    /// ([`Method::Auto`], `--precision auto`).
+    pub(crate) fn auto(
+        scene: &'s crate::scene::Scene,
+        camera: &crate::camera::Camera,
+        accel: Accel,
+    ) -> Renderer<'s> {
+        let p = PacketScene::new(scene, camera, accel);
+        let redecide = Redecide::new(scene, camera, &p.packed, p.tiles.as_ref());
+        let tables = camera.tables(BLOCK_W as u32, BLOCK_H as u32);
+        Renderer {
+            width: camera.width as usize,
+            height: camera.height as usize,
+            job: Job::Setup(
+                Box::new(Setup::Packet(Box::new(p), tables)),
+                Some(Box::new(redecide)),
+            ),
+        }
+    }
+
     /// The acceleration in use: `none` for the brute-force methods.
     pub fn accel(&self) -> Accel {
         match &self.job {
-            Job::Setup(s) => s.accel(),
+            Job::Setup(s, _) => s.accel(),
             Job::Method(m) => m.accel(),
         }
     }
@@ -506,9 +579,15 @@ impl Renderer {
     /// thread.
     pub fn is_parallel(&self) -> bool {
         match &self.job {
-            Job::Setup(_) => true,
+            Job::Setup(..) => true,
             Job::Method(m) => m.is_parallel(),
         }
+    }
+
+    /// Whether f32 hits that cannot be trusted are decided again in f64 (`--precision auto`
+    /// with the packet kernel).
+    pub fn redecides(&self) -> bool {
+        matches!(self.job, Job::Setup(_, Some(_)))
     }
 
     /// Renders the frame in the current rayon pool. Depth is reported in f32 by every kernel
@@ -525,9 +604,20 @@ impl Renderer {
     /// [`Renderer::render`], adding 1 to `progress` per finished strip of rows (methods other
     /// than the default count nothing).
     pub fn render_counting(&self, progress: Option<&AtomicUsize>) -> Frame<f32> {
+        self.render_marking(progress).0
+    }
+
+    /// [`Renderer::render_counting`], also returning the pixels whose f32 hit was decided again
+    /// in f64 (row-major indices, ascending; empty unless [`Renderer::redecides`]).
+    pub fn render_marking(&self, progress: Option<&AtomicUsize>) -> (Frame<f32>, Vec<usize>) {
+        let (w, h) = (self.width, self.height);
         match &self.job {
-            Job::Setup(s) => s.render_counting(self.width, self.height, progress),
-            Job::Method(m) => f32_depth(m.render()),
+            Job::Setup(s, Some(r)) => match s.as_ref() {
+                Setup::Packet(p, t) => packet_blocks::<BLOCK_W>(p, t, w, h, progress, Some(r)),
+                other => (other.render_counting(w, h, progress), Vec::new()),
+            },
+            Job::Setup(s, None) => (s.render_counting(w, h, progress), Vec::new()),
+            Job::Method(m) => (f32_depth(m.render()), Vec::new()),
         }
     }
 }

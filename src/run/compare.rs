@@ -4,7 +4,7 @@
 use super::load_view;
 use crate::cli::CompareSettings;
 use crate::compare::{
-    EDGE_BAND, LIST_UNEXCUSED, TIE_REL, compare_method, compare_with, diff_picture,
+    EDGE_BAND, LIST_UNEXCUSED, TIE_REL, compare_auto, compare_method, compare_with, diff_picture,
 };
 use crate::error::{Error, Result};
 use crate::output::{self, OutputKind, OutputSet};
@@ -27,6 +27,7 @@ pub(crate) fn compare_command(s: &CompareSettings) -> Result<()> {
     let method = s.view.method;
     let (report, oracle) = match method {
         Method::Default => compare_with(&scene, &camera, s.view.accel),
+        Method::Auto => compare_auto(&scene, &camera, s.view.accel),
         m => compare_method(&scene, &camera, m),
     };
     let r = &report;
@@ -70,6 +71,13 @@ pub(crate) fn compare_command(s: &CompareSettings) -> Result<()> {
             "all".to_string()
         };
         println!("  unexcused at (x, y), {shown}: {}", first.join(" "));
+    }
+    if method == Method::Auto {
+        println!(
+            "re-decided  {} in f64 ({:.4}%)",
+            count(r.redecided.len(), "pixel", "pixels"),
+            r.redecided.len() as f64 * 100.0 / r.pixels.max(1) as f64
+        );
     }
     println!(
         "depth rel   max {:.3e}, p99 {:.3e} over {}",

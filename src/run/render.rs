@@ -95,9 +95,8 @@ pub(crate) fn render_command(s: &RenderSettings) -> Result<()> {
         accel: s.view.accel,
         method,
     };
+    // The renderer borrows the scene: `--precision auto` re-decides hits from its shapes.
     let renderer = Renderer::new(&scene, &camera, &options)?;
-    // The renderer holds what it needs; the parsed shapes are not needed past setup.
-    drop(scene);
     stats.accel = renderer.accel().name();
     // The default method renders on the pool; the other methods on one thread.
     stats.threads = if renderer.is_parallel() {
@@ -112,9 +111,13 @@ pub(crate) fn render_command(s: &RenderSettings) -> Result<()> {
     let mut frame = None;
     for _ in 0..s.repeat {
         let start = Instant::now();
-        frame = Some(progress::with_progress(renderer.work_units(), |done| {
-            renderer.render_counting(Some(done))
-        }));
+        let (f, redone) = progress::with_progress(renderer.work_units(), |done| {
+            renderer.render_marking(Some(done))
+        });
+        if renderer.redecides() {
+            stats.redecided = Some(redone.len());
+        }
+        frame = Some(f);
         stats.renders.push(secs(start.elapsed()));
     }
     let frame = frame.expect("--repeat is at least 1");

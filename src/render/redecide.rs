@@ -1,0 +1,376 @@
+//! `--precision auto`: the f32 packets decide every pixel, and each hit whose f32 distance cannot
+//! be trusted to [`TOLERANCE`] is decided again in f64 for that pixel alone, with the oracle's
+//! scalar kernel through the same acceleration structure (the tile list of the pixel, the BVH,
+//! or every primitive), its constants computed from the scene's shapes as it reaches them
+//! (`soa::SceneRecords`: bit for bit the oracle's, with no f64 copy of the scene kept).
+//! A re-decided pixel gets the f64 id and depth, which are the oracle's.
+//!
+//! # When an f32 hit cannot be trusted
+//!
+//! u = 2^-24. The bounds below are first-order error bounds of the f32 kernels' distance `t`
+//! against the oracle's distance for the same primitive along the pixel's f64 ray. They add the
+//! kernel's own rounding (derived in `kernel::polygon`, `kernel::sphere`) and the change of
+//! the exact distance between the f32 ray and the f64 ray, whose directions differ by at most
+//! ~2u radians (`RayTables::dir_x1` in each precision). Every term is a worst case (errors of
+//! one sign, aligned), so a hit is re-decided when its bound exceeds 0.9 of [`TOLERANCE`]; the
+//! rest covers second-order terms and the rounding of a depth to the f32 output buffer (u/2).
+//!
+//! - Polygons: `t = p / (d . N)` with `cos = d . N = p / t` (p: the plane distance the kernel
+//!   used). `d . N` errs by ~4u absolute (kernel::polygon: 3-term dot product of rounded unit
+//!   vectors), so `t` by 4u / cos relative; the exact distance along a ray turned by `a`
+//!   radians changes by about `a tan(theta) <= a / cos` relative, 2u / cos here; `p` and the
+//!   division round twice. So `err <= u (2 + 6 t / p)`: grazing incidence, where `t` is many
+//!   times the plane's distance, is the failing case (the lab's `grazing` scene).
+//! - Spheres: the kernel returns `c / q` (eye outside) or `q` (eye inside), with
+//!   `q = b + s`, `b = oc . d`, `s = sqrt(disc)`, `c = |oc|^2 - r^2` rounded once from f64.
+//!   `b` errs by ~3u |oc|; each component of `l = oc - b d` by ~4u |oc|, so `l . l` by
+//!   2 |l| sqrt(3) 4u |oc| <= 14u r |oc| (|l| <= r) and `s` by 7u r |oc| / s; turning the ray
+//!   by 2u moves `s` by up to 2u |oc| r / s; 9u, rounded up to 12u. So
+//!   `err <= u (5 + (3 |oc| + 12 r |oc| / s) / q)`, with `s = |b - t|` and `q = b + s`
+//!   recovered from the f32 hit (`t = b -+ s`). It grows towards the silhouette (`s -> 0`) and
+//!   for spheres far larger than their distance to the eye (`|oc| / q` large: the lab's
+//!   `ground`, a radius-1e4 sphere seen from 1.5 above), the two failing cases.
+//!
+//! Ids: a re-decided pixel takes the oracle's id. An f32 pixel that is not re-decided keeps its
+//! id; it can differ from the oracle's only where the f32 edge tests (8u edge tolerance, ~2u
+//! ray error: under 1e-6 rad) or sphere silhouettes flip, or where two hits are within the
+//! trusted error of each other (a genuine tie, 1e-5 relative). Primitives that subtend less than
+//! ~1e-6 rad lie wholly inside that band, and eye-relative f64 setup keeps scenes far from the
+//! origin as precise as near it (the lab's `translated`), so neither needs a condition of its
+//! own. `tests/auto.rs` proves the guarantee against the oracle on the stress scenes and on
+//! scenes written for each failure class, with every acceleration.
+//!
+//! Cost: the bounds are solved for `t` once per primitive in setup (8 bytes per primitive); a
+//! packet's check is then one load per lane and two SIMD compares. A re-decision walks that
+//! pixel's candidates in f64.
+
+use crate::accel::bvh::{ranges_x4d, trace_bvh_x1, trace_bvh_x4d};
+use crate::accel::{Bvh, Tiles};
+use crate::camera::{Camera, RayTables};
+use crate::kernel::Hit8;
+use crate::kernel::methods::wide64::{Hit4d, dir_x4d};
+use crate::kernel::polygon::{QuadK, TriangleK};
+use crate::kernel::scalar::trace_x1;
+use crate::kernel::sphere::SphereK;
+use crate::scene::Scene;
+use crate::soa::{Packed, Records, SceneRecords};
+use std::cell::RefCell;
+use wide::{f32x8, f64x4};
+
+/// The guarantee of `--precision auto`: every pixel's depth is within this relative distance
+/// of the f64 oracle's depth for the same primitive.
+pub const TOLERANCE: f64 = 1e-5;
+
+/// f32 unit roundoff.
+const U: f64 = f32::EPSILON as f64 / 2.0;
+/// Polygon bound `u (POLY_A + POLY_B t / p)` (derived above).
+const POLY_A: f64 = 2.0;
+const POLY_B: f64 = 6.0;
+/// Sphere bound `u (SPHERE_A + (SPHERE_B |oc| + SPHERE_C r |oc| / s) / q)` (derived above).
+const SPHERE_A: f64 = 5.0;
+const SPHERE_B: f64 = 3.0;
+const SPHERE_C: f64 = 12.0;
+/// A hit is re-decided when its bound exceeds this (the bound adds worst cases; the rest of
+/// the tolerance covers second-order terms and the f32 output buffer's rounding, u/2).
+const BUDGET: f64 = 0.9 * TOLERANCE;
+
+/// What `--precision auto` needs beside the packet kernel's setup.
+pub struct Redecide<'s> {
+    scene: &'s Scene,
+    camera_eye: glam::DVec3,
+    /// Per scene id: the distances `[lo, hi]` between which an f32 hit on that primitive is
+    /// trusted (the bounds above solved for `t` once per primitive; f32, rounded inward).
+    limits: Vec<[f32; 2]>,
+    /// Per tile of the packet kernel's tiles (or one entry for the whole image without them):
+    /// a distance up to which a hit on any primitive listed there is trusted (the least `hi`;
+    /// -inf where one needs `lo`). A packet whose hits are all nearer skips the per-lane check.
+    safe: Vec<f32>,
+    /// The oracle's f64 ray tables, padded to whole 4x2 blocks (`dir_x1` is the oracle's ray).
+    tables: RayTables<f64>,
+}
+
+/// Where a strip's re-decisions walk: the packet kernel's structure, over f64 records of its
+/// stores computed when first reached and kept in a small cache (neighbouring re-decided pixels
+/// mostly meet the same primitives).
+pub(crate) struct Walk<'a> {
+    records: Cached<'a>,
+    tiles: Option<&'a Tiles>,
+    bvh: Option<&'a Bvh>,
+}
+
+/// From this many untrusted lanes in a packet on, its rows are decided again in f64x4 lanes
+/// rather than one ray at a time.
+const ROW_MIN: u32 = 2;
+
+/// Slots per kind in a strip's record cache (direct-mapped by index).
+const CACHE_SLOTS: usize = 256;
+
+/// [`SceneRecords`] with a direct-mapped cache per kind: slot `i % CACHE_SLOTS` holds the
+/// record of index `i` when its key is `i + 1`. Each kind's slots are allocated on its first
+/// use, so a strip with nothing to re-decide allocates nothing.
+struct Cached<'a> {
+    inner: SceneRecords<'a>,
+    spheres: Slots<SphereK<f64>>,
+    triangles: Slots<TriangleK<f64>>,
+    quads: Slots<QuadK<f64>>,
+}
+
+type Slots<K> = RefCell<Vec<(usize, Option<(K, i32)>)>>;
+
+/// The cached record of index `i`, computed by `make` on a miss.
+#[inline(always)]
+fn cached<K: Copy>(
+    slots: &Slots<K>,
+    i: usize,
+    make: impl FnOnce() -> Option<(K, i32)>,
+) -> Option<(K, i32)> {
+    let mut slots = slots.borrow_mut();
+    if slots.is_empty() {
+        slots.resize(CACHE_SLOTS, (0, None));
+    }
+    let slot = &mut slots[i % CACHE_SLOTS];
+    if slot.0 != i + 1 {
+        *slot = (i + 1, make());
+    }
+    slot.1
+}
+
+impl Records<f64> for Cached<'_> {
+    fn counts(&self) -> [usize; 3] {
+        self.inner.counts()
+    }
+    fn sphere(&self, i: usize) -> Option<(SphereK<f64>, i32)> {
+        cached(&self.spheres, i, || self.inner.sphere(i))
+    }
+    fn triangle(&self, i: usize) -> Option<(TriangleK<f64>, i32)> {
+        cached(&self.triangles, i, || self.inner.triangle(i))
+    }
+    fn quad(&self, i: usize) -> Option<(QuadK<f64>, i32)> {
+        cached(&self.quads, i, || self.inner.quad(i))
+    }
+}
+
+/// The largest f32 not above `x`, the smallest not below.
+fn down(x: f64) -> f32 {
+    let f = x as f32;
+    if f as f64 > x { f.next_down() } else { f }
+}
+fn up(x: f64) -> f32 {
+    let f = x as f32;
+    if (f as f64) < x { f.next_up() } else { f }
+}
+
+/// The distances at which a hit on a polygon with plane distance `p` is trusted:
+/// `u (POLY_A + POLY_B t / p) <= BUDGET`.
+fn polygon_limits(p: f32) -> [f32; 2] {
+    [0.0, down(p as f64 * (BUDGET / U - POLY_A) / POLY_B)]
+}
+
+/// The distances at which a hit on the sphere (`oc`, `r2`, `c`: its f32 constants) is trusted.
+/// Along the rays that meet it, the bound of the module comment is a function of `t` alone
+/// (`t q = c` and `s = |q - t| / 2` by Vieta, the eye outside; `q = t`, `s = (t^2 - c) / 2t`,
+/// inside). Outside it grows from the centre ray to the silhouette, so the hits trusted are
+/// those up to a `t*`; inside it falls with `t`, so they are those from a `t*` on. `t*` is
+/// found by bisection (60 halvings), keeping the trusted side.
+fn sphere_limits(oc: [f32; 3], r2: f32, c: f32) -> [f32; 2] {
+    let len = oc.map(f64::from).iter().map(|x| x * x).sum::<f64>().sqrt();
+    let (r, c) = ((r2 as f64).sqrt(), c as f64);
+    let budget = BUDGET / U - SPHERE_A;
+    if c > 0.0 {
+        // excess over the budget at distance t (eye outside), increasing on (0, sqrt(c))
+        let excess = |t: f64| {
+            SPHERE_B * len * t / c + 2.0 * SPHERE_C * r * len * t * t / (c * (c - t * t)) - budget
+        };
+        let (mut lo, mut hi) = (0.0, c.sqrt());
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if excess(mid) <= 0.0 {
+                lo = mid
+            } else {
+                hi = mid
+            }
+        }
+        [0.0, down(lo)]
+    } else {
+        // eye inside: decreasing in t over (0, r + |oc|]
+        let excess = |t: f64| SPHERE_B * len / t + 2.0 * SPHERE_C * r * len / (t * t - c) - budget;
+        let far = r + len;
+        if excess(far) > 0.0 {
+            return [f32::INFINITY, f32::INFINITY];
+        }
+        let (mut lo, mut hi) = (0.0, far);
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if excess(mid) <= 0.0 {
+                hi = mid
+            } else {
+                lo = mid
+            }
+        }
+        [up(hi), f32::INFINITY]
+    }
+}
+
+impl<'s> Redecide<'s> {
+    /// The trusted distances of every primitive of `packed` (which `scene` seen by `camera`
+    /// was packed into), and the camera's f64 ray tables.
+    pub fn new(
+        scene: &'s Scene,
+        camera: &Camera,
+        packed: &Packed,
+        tiles: Option<&Tiles>,
+    ) -> Redecide<'s> {
+        let mut limits = vec![[0.0, f32::INFINITY]; scene.shapes.len()];
+        let s = &packed.spheres;
+        for i in 0..s.len() {
+            limits[s.id[i] as usize] =
+                sphere_limits([s.ocx[i], s.ocy[i], s.ocz[i]], s.r2[i], s.c[i]);
+        }
+        for (ids, p) in [
+            (&packed.triangles.id, &packed.triangles.p),
+            (&packed.quads.id, &packed.quads.p),
+        ] {
+            for (&id, &p) in ids.iter().zip(p) {
+                limits[id as usize] = polygon_limits(p);
+            }
+        }
+        let ids: [&[f32]; 3] = [&packed.spheres.id, &packed.triangles.id, &packed.quads.id];
+        let safe_of = |a: f32, kind: usize, i: usize| {
+            let [lo, hi] = limits[ids[kind][i] as usize];
+            if lo > 0.0 {
+                f32::NEG_INFINITY
+            } else {
+                a.min(hi)
+            }
+        };
+        let safe = match tiles {
+            Some(tiles) => tiles.per_tile(f32::INFINITY, safe_of),
+            None => {
+                let counts = ids.map(|v| v.len());
+                let mut a = f32::INFINITY;
+                for (kind, &n) in counts.iter().enumerate() {
+                    for i in 0..n {
+                        a = safe_of(a, kind, i);
+                    }
+                }
+                vec![a]
+            }
+        };
+        Redecide {
+            scene,
+            camera_eye: camera.eye,
+            limits,
+            safe,
+            tables: camera.tables(4, 2),
+        }
+    }
+
+    /// The walk of one strip's re-decisions through `packed` and its structure.
+    pub(crate) fn walk<'a>(
+        &'a self,
+        packed: &'a Packed,
+        tiles: Option<&'a Tiles>,
+        bvh: Option<&'a Bvh>,
+    ) -> Walk<'a> {
+        Walk {
+            records: Cached {
+                inner: SceneRecords::new(self.scene, packed, self.camera_eye),
+                spheres: RefCell::new(Vec::new()),
+                triangles: RefCell::new(Vec::new()),
+                quads: RefCell::new(Vec::new()),
+            },
+            tiles,
+            bvh,
+        }
+    }
+
+    /// Checks the hits of the packet at pixel `(bx, by)` (`bw` pixels wide, lanes in rows) and
+    /// decides again in f64 each lane whose hit lies outside its primitive's trusted distances.
+    /// Returns the lanes re-decided, as a bit mask.
+    #[inline]
+    pub(crate) fn fix_packet(
+        &self,
+        walk: &Walk,
+        (bx, by, bw): (usize, usize, usize),
+        hit: &mut Hit8,
+    ) -> u32 {
+        let hits = hit.id.simd_ge(f32x8::ZERO);
+        let safe = match walk.tiles {
+            Some(tiles) => self.safe[tiles.tile_index(bx, by)],
+            None => self.safe[0],
+        };
+        if !(hits & hit.t.simd_gt(f32x8::splat(safe))).any() {
+            return 0;
+        }
+        // ids are exact in f32 and below `limits.len()`; background lanes read entry 0
+        let index = hits.select(hit.id, f32x8::ZERO).trunc_int().to_array();
+        let none = [0.0, f32::INFINITY];
+        let lim = index.map(|i| *self.limits.get(i as usize).unwrap_or(&none));
+        let (lo, hi) = (f32x8::new(lim.map(|l| l[0])), f32x8::new(lim.map(|l| l[1])));
+        let outside = hit.t.simd_lt(lo) | hit.t.simd_gt(hi);
+        let mut untrusted = (outside & hits).to_bitmask();
+        if untrusted == 0 {
+            return 0;
+        }
+        let redone = untrusted;
+        let (mut t, mut id) = (hit.t.to_array(), hit.id.to_array());
+        if bw == 4 && untrusted.count_ones() >= ROW_MIN {
+            // rows of four in f64x4 lanes: each lane is the oracle's answer, bit for bit
+            for row in 0..2 {
+                let lanes = (untrusted >> (4 * row)) & 0xF;
+                if lanes != 0 {
+                    let (rt, rid) = self.trace_row(walk, (bx, by + row), lanes);
+                    for i in 0..4 {
+                        if lanes & (1 << i) != 0 {
+                            (t[4 * row + i], id[4 * row + i]) = (rt[i], rid[i]);
+                        }
+                    }
+                }
+            }
+            untrusted = 0;
+        }
+        while untrusted != 0 {
+            let lane = untrusted.trailing_zeros() as usize;
+            (t[lane], id[lane]) = self.trace(walk, (bx + lane % bw, by + lane / bw));
+            untrusted &= untrusted - 1;
+        }
+        hit.t = f32x8::new(t);
+        hit.id = f32x8::new(id);
+        redone
+    }
+
+    /// The oracle's hits for the pixels `x0..x0 + 4` of row `y` in the lanes of `lanes` (bits),
+    /// in f64x4 lanes (`kernel::methods::wide64`, each lane the oracle's scalar answer bit for
+    /// bit), depths rounded once to f32.
+    fn trace_row(&self, walk: &Walk, (x0, y): (usize, usize), lanes: u32) -> ([f32; 4], [f32; 4]) {
+        let t = &self.tables;
+        let sx = f64x4::new(std::array::from_fn(|i| t.sx[x0 + i]));
+        let d = dir_x4d(t, sx, f64x4::splat(t.sy[y]));
+        let active = f64x4::new(std::array::from_fn(|i| (lanes >> i & 1) as f64));
+        let mut hit = Hit4d::new(active.simd_gt(f64x4::ZERO));
+        match (walk.tiles, walk.bvh) {
+            (Some(tiles), _) => tiles.trace_x4d(&walk.records, [x0, x0 + 3, y], &d, &mut hit),
+            (_, Some(bvh)) => trace_bvh_x4d(&walk.records, bvh, &d, &mut hit),
+            _ => {
+                let [s, tr, q] = walk.records.counts();
+                ranges_x4d(&walk.records, [0..s, 0..tr, 0..q], &d, &mut hit)
+            }
+        }
+        (
+            hit.t.to_array().map(|v| v as f32),
+            hit.id.to_array().map(|v| v as f32),
+        )
+    }
+
+    /// The oracle's hit for pixel `(x, y)`: f64 through the walk's structure, depth rounded
+    /// once to f32 (id -1 and +inf for none).
+    fn trace(&self, walk: &Walk, (x, y): (usize, usize)) -> (f32, f32) {
+        let d = self.tables.dir_x1(x, y);
+        let h = match (walk.tiles, walk.bvh) {
+            (Some(tiles), _) => tiles.trace_x1(&walk.records, (x, y), d),
+            (_, Some(bvh)) => trace_bvh_x1(&walk.records, bvh, d),
+            _ => trace_x1(&walk.records, d),
+        };
+        (h.t as f32, h.id as f32)
+    }
+}
