@@ -53,6 +53,8 @@ pub struct Row {
     pub depth_p99: f64,
     pub depth_max: f64,
     pub rays_per_s: f64,
+    /// Pixels the method decided again in f64 (`auto`; 0 for the others).
+    pub redecided: usize,
     /// Per pixel: class | flags.
     pub class: Vec<u8>,
 }
@@ -136,6 +138,7 @@ pub fn measure(s: &LabScene, method: Method, oracle: &LabFrame, frame: &LabFrame
         depth_p99: 0.0,
         depth_max: 0.0,
         rays_per_s: 0.0,
+        redecided: 0,
         class: vec![0; w * h],
     };
     let mut rel = Vec::new();
@@ -205,6 +208,7 @@ pub fn run_scene(s: &LabScene, methods: &[Method]) -> SceneResult {
             let (frame, rays_per_s) = time_render(prepared.as_ref());
             let mut row = measure(s, m, &oracle_frame, &frame);
             row.rays_per_s = rays_per_s;
+            row.redecided = prepared.render_marking().1.len();
             row
         })
         .collect();

@@ -35,6 +35,16 @@ pub struct Summary {
     /// Geometric mean rays/s over the seed scenes and over the stress scenes.
     pub seed_rays_per_s: f64,
     pub stress_rays_per_s: f64,
+    /// Pixels re-decided in f64 (`auto`), per million pixels of the seed and of the stress
+    /// scenes.
+    pub seed_redecided_ppm: f64,
+    pub stress_redecided_ppm: f64,
+}
+
+/// Re-decided pixels per million over `rows`.
+fn ppm<'a>(rows: impl Iterator<Item = &'a Row>) -> f64 {
+    let (n, px) = rows.fold((0, 0), |(n, px), r| (n + r.redecided, px + r.pixels));
+    n as f64 * 1e6 / px.max(1) as f64
 }
 
 fn geomean(v: impl Iterator<Item = f64>) -> f64 {
@@ -67,9 +77,24 @@ pub fn summarise(results: &[SceneResult], methods: &[Method]) -> Vec<Summary> {
                 depth_p99: rows(true).map(|r| r.depth_p99).fold(0.0, f64::max),
                 seed_rays_per_s: geomean(rows(false).map(|r| r.rays_per_s)),
                 stress_rays_per_s: geomean(rows(true).map(|r| r.rays_per_s)),
+                seed_redecided_ppm: ppm(rows(false)),
+                stress_redecided_ppm: ppm(rows(true)),
             }
         })
         .collect()
+}
+
+/// For `auto`: the fraction of pixels it re-decided in f64, seed and stress scenes.
+fn redecided_note(s: &Summary) -> String {
+    if s.method == Method::Auto {
+        format!(
+            "; re-decided {:.2}% of seed, {:.2}% of stress pixels",
+            s.seed_redecided_ppm / 1e4,
+            s.stress_redecided_ppm / 1e4
+        )
+    } else {
+        String::new()
+    }
 }
 
 /// The machine, for the table's header: CPU model from /proc/cpuinfo.
@@ -131,7 +156,13 @@ pub fn table(scenes: &[LabScene], results: &[SceneResult], sums: &[Summary]) -> 
     }
     let _ = writeln!(t, "\nMethods:\n");
     for s in sums {
-        let _ = writeln!(t, "- `{}`: {}", s.method.name(), s.method.describe());
+        let _ = writeln!(
+            t,
+            "- `{}`: {}{}",
+            s.method.name(),
+            s.method.describe(),
+            redecided_note(s)
+        );
     }
     let _ = writeln!(t, "\n### Per scene\n");
     for (sc, r) in scenes.iter().zip(results) {
@@ -291,7 +322,12 @@ where
         chart
             .draw_series(std::iter::once(Circle::new(*p, 7, c.filled())))
             .map_err(|e| err(&e))?
-            .label(format!("{}: {}", s.method.name(), s.method.describe()))
+            .label(format!(
+                "{}: {}{}",
+                s.method.name(),
+                s.method.describe(),
+                redecided_note(s)
+            ))
             .legend(move |(x, y)| Circle::new((x + 10, y), 5, c.filled()));
         // labels of points that (nearly) coincide are stacked downwards
         let stacked = pts[..i]

@@ -38,6 +38,9 @@
 //! `t` errs by ~4u / cos(theta) relative, theta the angle between the ray and the normal: `d . N`
 //! carries an absolute error of ~4u, and it is cos(theta) itself; grazing hits lose precision
 //! (tests/agreement.rs bounds the relative error times cos(theta) by 48u; measured max 4.2u).
+//! `--precision auto` turns this bound into its re-decision rule (`render::redecide`): a hit
+//! whose bound exceeds 0.9e-5 relative is decided again in f64, which guarantees every depth
+//! within 1e-5 of the oracle's (README, "Precision"; `tests/auto.rs`).
 //! Known to fail: a polygon seen exactly edge-on (O in its plane) is never hit (it has no area
 //! on screen), nor is one with an edge whose ends are parallel seen from O (no edge plane:
 //! `tests::collapsed_edge_is_dropped`); the eye within ~u|V - O| of an edge's line gives an ill-conditioned edge plane.

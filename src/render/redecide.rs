@@ -54,6 +54,7 @@ use crate::kernel::scalar::trace_x1;
 use crate::kernel::sphere::SphereK;
 use crate::scene::Scene;
 use crate::soa::{Packed, Records, SceneRecords};
+use rayon::prelude::*;
 use std::cell::RefCell;
 use wide::{f32x8, f64x4};
 
@@ -110,7 +111,6 @@ const CACHE_SLOTS: usize = 256;
 /// use, so a strip with nothing to re-decide allocates nothing.
 struct Cached<'a> {
     inner: SceneRecords<'a>,
-    spheres: Slots<SphereK<f64>>,
     triangles: Slots<TriangleK<f64>>,
     quads: Slots<QuadK<f64>>,
 }
@@ -140,7 +140,8 @@ impl Records<f64> for Cached<'_> {
         self.inner.counts()
     }
     fn sphere(&self, i: usize) -> Option<(SphereK<f64>, i32)> {
-        cached(&self.spheres, i, || self.inner.sphere(i))
+        // a sphere's constants cost less to compute than to cache
+        self.inner.sphere(i)
     }
     fn triangle(&self, i: usize) -> Option<(TriangleK<f64>, i32)> {
         cached(&self.triangles, i, || self.inner.triangle(i))
@@ -222,9 +223,12 @@ impl<'s> Redecide<'s> {
     ) -> Redecide<'s> {
         let mut limits = vec![[0.0, f32::INFINITY]; scene.shapes.len()];
         let s = &packed.spheres;
-        for i in 0..s.len() {
-            limits[s.id[i] as usize] =
-                sphere_limits([s.ocx[i], s.ocy[i], s.ocz[i]], s.r2[i], s.c[i]);
+        let spheres: Vec<[f32; 2]> = (0..s.len())
+            .into_par_iter()
+            .map(|i| sphere_limits([s.ocx[i], s.ocy[i], s.ocz[i]], s.r2[i], s.c[i]))
+            .collect();
+        for (&id, l) in s.id.iter().zip(spheres) {
+            limits[id as usize] = l;
         }
         for (ids, p) in [
             (&packed.triangles.id, &packed.triangles.p),
@@ -275,7 +279,6 @@ impl<'s> Redecide<'s> {
         Walk {
             records: Cached {
                 inner: SceneRecords::new(self.scene, packed, self.camera_eye),
-                spheres: RefCell::new(Vec::new()),
                 triangles: RefCell::new(Vec::new()),
                 quads: RefCell::new(Vec::new()),
             },
@@ -303,10 +306,19 @@ impl<'s> Redecide<'s> {
             return 0;
         }
         // ids are exact in f32 and below `limits.len()`; background lanes read entry 0
-        let index = hits.select(hit.id, f32x8::ZERO).trunc_int().to_array();
         let none = [0.0, f32::INFINITY];
-        let lim = index.map(|i| *self.limits.get(i as usize).unwrap_or(&none));
-        let (lo, hi) = (f32x8::new(lim.map(|l| l[0])), f32x8::new(lim.map(|l| l[1])));
+        let limit = |id: f32| *self.limits.get(id as usize).unwrap_or(&none);
+        let ids = hits.select(hit.id, f32x8::ZERO);
+        // a hit lane exists: the check above found one
+        let first = ids.to_array()[hits.to_bitmask().trailing_zeros() as usize % 8];
+        let (lo, hi) = if (hits & !ids.simd_eq(f32x8::splat(first))).any() {
+            let lim = ids.to_array().map(limit);
+            (f32x8::new(lim.map(|l| l[0])), f32x8::new(lim.map(|l| l[1])))
+        } else {
+            // one primitive under every hit lane (the common case): one lookup
+            let [lo, hi] = limit(first);
+            (f32x8::splat(lo), f32x8::splat(hi))
+        };
         let outside = hit.t.simd_lt(lo) | hit.t.simd_gt(hi);
         let mut untrusted = (outside & hits).to_bitmask();
         if untrusted == 0 {
