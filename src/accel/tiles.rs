@@ -16,6 +16,9 @@
 //!   `a` moves the screen coordinate by at most `a (1 + s^2)` (s = tan of the angle off the
 //!   axis, at most `half_w^2 + half_h^2` squared), which is turned into pixels and rounded out,
 //!   plus one whole pixel for the rounding of the projection itself (f64, far below a pixel).
+//! - Tiles of the rectangle that no accepted ray can reach are left out: a polygon's where all
+//!   four corner pixel rays of the tile lie outside one of its edge planes, a sphere's where
+//!   its centre lies more than `r` outside one of the tile's side planes (`TileFrusta`).
 //! - Anything that reaches to or behind the eye's plane (a vertex or the cube within
 //!   `NEAR_PLANE_REL` of it, the eye inside a sphere) gets the whole image: its projection is
 //!   unbounded. Rectangles are clipped to the image; one wholly outside it is dropped.
@@ -238,6 +241,92 @@ fn near_f32(near: f64) -> f32 {
     if f as f64 > n { f.next_down() } else { f }
 }
 
+/// The corner pixel rays of every tile, to drop the tiles of a polygon's rectangle that no ray
+/// the kernel accepts can reach. The rays of a tile's pixels are the convex combinations of its
+/// four corner pixels' rays (`camera.rs`: the screen position is affine in x and in y), so if
+/// every corner ray lies more than `a` radians outside an edge plane, so does every pixel ray
+/// (`d = sum w_k c_k`, `w_k >= 0`: `d . n < -a sum w_k |c_k| <= -a |d|`). The kernel accepts a
+/// ray up to 8u outside an edge plane, its f32 ray errs by a few u and its f32 dot product by
+/// ~3u: `ANGLE_MARGIN` (32u) covers all three. Computed in f64 with the kernel's own f32 edge
+/// normals. Proven by tests/accel.rs (tiles == none, bit for bit).
+struct TileFrusta {
+    /// Screen x of each column, screen y of each row (f64, `Camera::sx`/`sy`).
+    sx: Vec<f64>,
+    sy: Vec<f64>,
+    f: DVec3,
+    r: DVec3,
+    u: DVec3,
+}
+
+impl TileFrusta {
+    fn new(c: &Camera) -> TileFrusta {
+        TileFrusta {
+            sx: (0..c.width).map(|x| c.sx::<f64>(x)).collect(),
+            sy: (0..c.height).map(|y| c.sy::<f64>(y)).collect(),
+            f: c.f,
+            r: c.r,
+            u: c.u,
+        }
+    }
+
+    /// The unit rays of tile `(tx, ty)`'s four corner pixels (clipped to the image).
+    fn corners(&self, (tx, ty): (usize, usize)) -> [DVec3; 4] {
+        let (x0, y0) = (tx * TILE_W, ty * TILE_H);
+        let x1 = (x0 + TILE_W - 1).min(self.sx.len() - 1);
+        let y1 = (y0 + TILE_H - 1).min(self.sy.len() - 1);
+        let ray =
+            |x: usize, y: usize| (self.f + self.sx[x] * self.r + self.sy[y] * self.u).normalize();
+        [ray(x0, y0), ray(x1, y0), ray(x0, y1), ray(x1, y1)]
+    }
+
+    /// Whether entry `e` may be accepted by a ray of tile `tile`: a polygon unless the tile
+    /// lies wholly outside one of its edge planes, a sphere unless it lies wholly outside one of
+    /// the tile's four side planes.
+    fn reaches(&self, packed: &Packed, e: &Entry, tile: (usize, usize)) -> bool {
+        let i = (e.prim & INDEX_MASK) as usize;
+        match e.prim >> KIND_SHIFT {
+            TRIANGLE => self.reaches_polygon(&packed.triangles.n, i, tile),
+            QUAD => self.reaches_polygon(&packed.quads.n, i, tile),
+            _ => self.reaches_sphere(&packed.spheres, i, tile),
+        }
+    }
+
+    /// A ray meets a sphere only within `r` of its centre; the tile's rays all lie on the inner
+    /// side of the planes through the eye and two neighbouring corner rays, so a sphere whose
+    /// centre is more than `r` (plus `ANGLE_MARGIN |oc|`, for the f32 silhouette's ~4u |oc| and
+    /// the rays' error) outside one of them is met by none. The eye inside the sphere always
+    /// passes (`|oc| <= r`).
+    fn reaches_sphere(&self, s: &crate::soa::Spheres, i: usize, tile: (usize, usize)) -> bool {
+        let [c0, c1, c2, c3] = self.corners(tile);
+        let oc = DVec3::new(s.ocx[i] as f64, s.ocy[i] as f64, s.ocz[i] as f64);
+        let r = (s.r2[i] as f64).sqrt();
+        let slack = r + ANGLE_MARGIN * oc.length();
+        let centre = c0 + c1 + c2 + c3;
+        // the four sides, in order around the tile: top, right, bottom, left
+        [(c0, c1), (c1, c3), (c3, c2), (c2, c0)]
+            .iter()
+            .all(|&(a, b)| {
+                let n = a.cross(b);
+                let n = if n.dot(centre) < 0.0 { -n } else { n };
+                let len = n.length();
+                len == 0.0 || oc.dot(n) / len >= -slack
+            })
+    }
+
+    fn reaches_polygon<const N: usize>(
+        &self,
+        n: &[[Vec<f32>; 3]; N],
+        i: usize,
+        tile: (usize, usize),
+    ) -> bool {
+        let corners = self.corners(tile);
+        n.iter().all(|edge| {
+            let m = DVec3::new(edge[0][i] as f64, edge[1][i] as f64, edge[2][i] as f64);
+            corners.iter().any(|c| c.dot(m) >= -ANGLE_MARGIN)
+        })
+    }
+}
+
 impl Tiles {
     /// Bins the primitives of `packed` (whose ids index `scene.shapes`) for `camera`.
     pub fn new(scene: &crate::scene::Scene, packed: &Packed, camera: &Camera) -> Tiles {
@@ -293,10 +382,16 @@ impl Tiles {
                 .into_par_iter()
                 .map(|i| footprint(QUAD, i, packed.quads.id[i])),
         );
+        // The tiles of an entry's rectangle that its kernel can reach: for a polygon, not the
+        // tiles whose four corner pixel rays all lie outside one of its edge planes.
+        let frusta = &TileFrusta::new(camera);
         let covered = |e: &Entry| {
+            let e = *e;
             let [tx0, ty0, tx1, ty1] = e.tiles().unwrap_or([1, 1, 0, 0]);
             (ty0..=ty1)
-                .flat_map(move |ty| (tx0..=tx1).map(move |tx| ty as usize * cols + tx as usize))
+                .flat_map(move |ty| (tx0..=tx1).map(move |tx| (tx as usize, ty as usize)))
+                .filter(move |&tile| frusta.reaches(packed, &e, tile))
+                .map(move |(tx, ty)| ty * cols + tx)
         };
         // Counting sort: counts, prefix sum, scatter.
         let counts: Vec<AtomicU32> = (0..cols * rows).map(|_| AtomicU32::new(0)).collect();
@@ -743,6 +838,14 @@ mod tests {
                                 e.rect
                             );
                             assert!(t >= e.near, "seed {seed}: t {t} < near {}", e.near);
+                            // the tile-frustum test kept it in this pixel's tile
+                            assert!(
+                                tiles
+                                    .list(x / TILE_W, y / TILE_H)
+                                    .iter()
+                                    .any(|e| e.prim == prim),
+                                "seed {seed}: kind {kind} #{i} hit at ({x}, {y}), not in its tile"
+                            );
                         }
                     }
                 }
@@ -789,7 +892,7 @@ mod tests {
             }
         }
         assert!(
-            kept > 1000 && left > 1000,
+            kept > 1000 && left > 200,
             "both cases occur: {kept} kept, {left} left out"
         );
     }
