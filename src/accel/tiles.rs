@@ -250,33 +250,34 @@ fn near_f32(near: f64) -> f32 {
 /// ~3u: `ANGLE_MARGIN` (32u) covers all three. Computed in f64 with the kernel's own f32 edge
 /// normals. Proven by tests/accel.rs (tiles == none, bit for bit).
 struct TileFrusta {
-    /// Screen x of each column, screen y of each row (f64, `Camera::sx`/`sy`).
-    sx: Vec<f64>,
-    sy: Vec<f64>,
-    f: DVec3,
-    r: DVec3,
-    u: DVec3,
+    cols: usize,
+    /// Per tile (row-major), the unit rays of its four corner pixels (clipped to the image):
+    /// (x0, y0), (x1, y0), (x0, y1), (x1, y1).
+    corners: Vec<[DVec3; 4]>,
 }
 
 impl TileFrusta {
     fn new(c: &Camera) -> TileFrusta {
-        TileFrusta {
-            sx: (0..c.width).map(|x| c.sx::<f64>(x)).collect(),
-            sy: (0..c.height).map(|y| c.sy::<f64>(y)).collect(),
-            f: c.f,
-            r: c.r,
-            u: c.u,
-        }
+        let (w, h) = (c.width as usize, c.height as usize);
+        let (cols, rows) = (w.div_ceil(TILE_W), h.div_ceil(TILE_H));
+        let sx: Vec<f64> = (0..c.width).map(|x| c.sx::<f64>(x)).collect();
+        let sy: Vec<f64> = (0..c.height).map(|y| c.sy::<f64>(y)).collect();
+        let ray = |x: usize, y: usize| (c.f + sx[x] * c.r + sy[y] * c.u).normalize();
+        let corners = (0..cols * rows)
+            .into_par_iter()
+            .map(|t| {
+                let (x0, y0) = (t % cols * TILE_W, t / cols * TILE_H);
+                let (x1, y1) = ((x0 + TILE_W - 1).min(w - 1), (y0 + TILE_H - 1).min(h - 1));
+                [ray(x0, y0), ray(x1, y0), ray(x0, y1), ray(x1, y1)]
+            })
+            .collect();
+        TileFrusta { cols, corners }
     }
 
-    /// The unit rays of tile `(tx, ty)`'s four corner pixels (clipped to the image).
+    /// The unit rays of tile `(tx, ty)`'s four corner pixels.
+    #[inline]
     fn corners(&self, (tx, ty): (usize, usize)) -> [DVec3; 4] {
-        let (x0, y0) = (tx * TILE_W, ty * TILE_H);
-        let x1 = (x0 + TILE_W - 1).min(self.sx.len() - 1);
-        let y1 = (y0 + TILE_H - 1).min(self.sy.len() - 1);
-        let ray =
-            |x: usize, y: usize| (self.f + self.sx[x] * self.r + self.sy[y] * self.u).normalize();
-        [ray(x0, y0), ray(x1, y0), ray(x0, y1), ray(x1, y1)]
+        self.corners[ty * self.cols + tx]
     }
 
     /// Whether entry `e` may be accepted by a ray of tile `tile`: a polygon unless the tile
@@ -388,9 +389,11 @@ impl Tiles {
         let covered = |e: &Entry| {
             let e = *e;
             let [tx0, ty0, tx1, ty1] = e.tiles().unwrap_or([1, 1, 0, 0]);
+            // a rectangle within one tile: the primitive projects into it, nothing to drop
+            let single = tx0 == tx1 && ty0 == ty1;
             (ty0..=ty1)
                 .flat_map(move |ty| (tx0..=tx1).map(move |tx| (tx as usize, ty as usize)))
-                .filter(move |&tile| frusta.reaches(packed, &e, tile))
+                .filter(move |&tile| single || frusta.reaches(packed, &e, tile))
                 .map(move |(tx, ty)| ty * cols + tx)
         };
         // Counting sort: counts, prefix sum, scatter.

@@ -23,10 +23,13 @@
 //!   times the plane's distance, is the failing case (the lab's `grazing` scene).
 //! - Spheres: the kernel returns `c / q` (eye outside) or `q` (eye inside), with
 //!   `q = b + s`, `b = oc . d`, `s = sqrt(disc)`, `c = |oc|^2 - r^2` rounded once from f64.
-//!   `b` errs by ~3u |oc|; each component of `l = oc - b d` by ~4u |oc|, so `l . l` by
-//!   2 |l| sqrt(3) 4u |oc| <= 14u r |oc| (|l| <= r) and `s` by 7u r |oc| / s; turning the ray
-//!   by 2u moves `s` by up to 2u |oc| r / s; 9u, rounded up to 12u. So
-//!   `err <= u (5 + (3 |oc| + 12 r |oc| / s) / q)`, with `s = |b - t|` and `q = b + s`
+//!   `b` errs by ~3u |oc|; `l = oc - b d` then errs by that error times `d`, which is
+//!   perpendicular to `l` and so leaves `l . l` unchanged to first order, plus one rounding of
+//!   each component (~u |oc| in all): `l . l` errs by ~2 r u |oc| + 3u r^2 <= 5u r |oc|
+//!   (|l| <= r <= |oc| for a hit from outside), and `disc` by ~8u r |oc| with the roundings of
+//!   `r^2` and of the difference, which moves `s` by 4u r |oc| / s. Turning the ray by 2u moves
+//!   `l` by 2u |oc| and `s` by up to 2u r |oc| / s: 6u, rounded up to 8u. So
+//!   `err <= u (5 + (3 |oc| + 8 r |oc| / s) / q)`, with `s = |b - t|` and `q = b + s`
 //!   recovered from the f32 hit (`t = b -+ s`). It grows towards the silhouette (`s -> 0`) and
 //!   for spheres far larger than their distance to the eye (`|oc| / q` large: the lab's
 //!   `ground`, a radius-1e4 sphere seen from 1.5 above), the two failing cases.
@@ -70,7 +73,7 @@ const POLY_B: f64 = 6.0;
 /// Sphere bound `u (SPHERE_A + (SPHERE_B |oc| + SPHERE_C r |oc| / s) / q)` (derived above).
 const SPHERE_A: f64 = 5.0;
 const SPHERE_B: f64 = 3.0;
-const SPHERE_C: f64 = 12.0;
+const SPHERE_C: f64 = 8.0;
 /// A hit is re-decided when its bound exceeds this (the bound adds worst cases; the rest of
 /// the tolerance covers second-order terms and the f32 output buffer's rounding, u/2).
 const BUDGET: f64 = 0.9 * TOLERANCE;
