@@ -89,3 +89,45 @@ fn image_to_stdout_is_the_file_bytes_in_the_chosen_format() {
     assert!(stderr(&o).contains("--format bmp"), "{}", stderr(&o));
     assert!(!dir.join("g.png").exists());
 }
+
+/// A reader that closes the pipe early (`lanecast -o - | head -c 8`) ends the run quietly:
+/// exit 0, nothing on stderr, as ripgrep does. The BMP is 12 MB, far more than a pipe holds,
+/// so the write does meet the closed pipe.
+#[test]
+fn a_reader_closing_the_pipe_early_is_a_quiet_end() {
+    use std::io::Read;
+    let dir = TempDir::new("stdout-epipe");
+    dir.copy_in(&seed_scene(2), "s.sc");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_lanecast"))
+        .args([
+            "-i",
+            "s.sc",
+            "-o",
+            "-",
+            "--format",
+            "bmp",
+            "-size",
+            "2000x2000",
+        ])
+        .current_dir(&dir.path)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut head = [0u8; 8];
+    child.stdout.take().unwrap().read_exact(&mut head).unwrap();
+    // the read end is dropped here: the rest of the image meets a closed pipe
+    let o = child.wait_with_output().unwrap();
+    assert_eq!(&head[..2], b"BM");
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(
+        o.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+}

@@ -153,9 +153,14 @@ pub(crate) fn render_command(s: &RenderSettings) -> Result<()> {
     if let Some(format) = s.stdout_format {
         // `-o -`: after the files, so a failed file leaves nothing half-sent either
         let mut out = std::io::BufWriter::new(std::io::stdout().lock());
-        output::encode_image(&mut out, format, s.view.width, s.view.height, &rgb)
-            .and_then(|()| std::io::Write::flush(&mut out))
-            .map_err(|e| Error::io("-", "write the image to standard output", e))?;
+        let written = output::encode_image(&mut out, format, s.view.width, s.view.height, &rgb)
+            .and_then(|()| std::io::Write::flush(&mut out));
+        match written {
+            // the reader closed the pipe (`-o - | head -c 8`): it wanted no more; as ripgrep
+            // does, that is a quiet end, not an error
+            Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => {}
+            other => other.map_err(|e| Error::io("-", "write the image to standard output", e))?,
+        }
     }
     if s.time {
         eprint!("{}", stats.text());
