@@ -444,31 +444,6 @@ impl Tiles {
         }
     }
 
-    /// Per tile (row-major), `fold` over its entries' kinds (0 sphere, 1 triangle, 2 quad) and
-    /// indices in their packed stores, from `init`; tiles in parallel.
-    pub fn per_tile<A: Copy + Send + Sync>(
-        &self,
-        init: A,
-        fold: impl Fn(A, usize, usize) -> A + Sync,
-    ) -> Vec<A> {
-        (0..self.start.len() - 1)
-            .into_par_iter()
-            .map(|t| {
-                let list = &self.entries[self.start[t] as usize..self.start[t + 1] as usize];
-                list.iter().fold(init, |a, e| {
-                    let kind = (e.prim >> KIND_SHIFT) as usize;
-                    fold(a, kind, (e.prim & INDEX_MASK) as usize)
-                })
-            })
-            .collect()
-    }
-
-    /// The tile (row-major index) pixel `(x, y)` lies in.
-    #[inline]
-    pub fn tile_index(&self, x: usize, y: usize) -> usize {
-        y / TILE_H * self.cols + x / TILE_W
-    }
-
     fn list(&self, tx: usize, ty: usize) -> &[Entry] {
         let t = ty * self.cols + tx;
         &self.entries[self.start[t] as usize..self.start[t + 1] as usize]
@@ -542,13 +517,34 @@ impl Tiles {
         d: &[f32x8; 3],
         hit: &mut Hit8,
     ) {
+        self.trace_packet_x8_with(p, lists, k, d, hit, |_, _, _| {})
+    }
+
+    /// [`Tiles::trace_packet_x8`], calling `won(kind, index, lanes)` after each entry tested
+    /// with the lanes it took (`--precision auto` carries each lane's trusted distance that
+    /// way; a no-op compiles away).
+    #[inline(always)]
+    pub fn trace_packet_x8_with(
+        &self,
+        p: &Packed,
+        lists: &PacketLists,
+        k: usize,
+        d: &[f32x8; 3],
+        hit: &mut Hit8,
+        mut won: impl FnMut(usize, usize, f32x8),
+    ) {
         let list = self.list(lists.tile.0, lists.tile.1);
         for &i in &lists.index[k * lists.stride..][..lists.len[k]] {
             let e = &list[i as usize];
             if !hit.t.simd_ge(f32x8::splat(e.near)).any() {
                 return;
             }
-            test_entry(p, e, d, hit);
+            let take = test_entry(p, e, d, hit);
+            won(
+                (e.prim >> KIND_SHIFT) as usize,
+                (e.prim & INDEX_MASK) as usize,
+                take,
+            );
         }
     }
 }
@@ -656,21 +652,20 @@ pub struct PacketLists {
 /// early exit (see `polygon_lanes_all`); spheres leave early where no lane meets them (their
 /// square root and division cost more than a mispredicted branch).
 #[inline(always)]
-fn test_entry(p: &Packed, e: &Entry, d: &[f32x8; 3], hit: &mut Hit8) {
+fn test_entry(p: &Packed, e: &Entry, d: &[f32x8; 3], hit: &mut Hit8) -> f32x8 {
     let i = (e.prim & INDEX_MASK) as usize;
     match e.prim >> KIND_SHIFT {
-        SPHERE => {
-            if let Some((mask, t)) = sphere_x8(&p.spheres.get(i), d) {
-                hit.update(mask, t, p.spheres.id[i]);
-            }
-        }
+        SPHERE => match sphere_x8(&p.spheres.get(i), d) {
+            Some((mask, t)) => hit.update(mask, t, p.spheres.id[i]),
+            None => f32x8::ZERO,
+        },
         TRIANGLE => {
             let (mask, t) = polygon_lanes_all(&p.triangles.get(i), d);
-            hit.update(mask, t, p.triangles.id[i]);
+            hit.update(mask, t, p.triangles.id[i])
         }
         _ => {
             let (mask, t) = polygon_lanes_all(&p.quads.get(i), d);
-            hit.update(mask, t, p.quads.id[i]);
+            hit.update(mask, t, p.quads.id[i])
         }
     }
 }

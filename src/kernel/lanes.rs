@@ -141,13 +141,15 @@ impl<L: Lanes> HitLanes<L> {
     }
 
     /// [`crate::kernel::closer`], lane by lane, for candidate distances `t` of primitive `id`
-    /// in the lanes of `mask`.
+    /// in the lanes of `mask`. Returns the mask of the lanes it took (callers that track more
+    /// about the winner use it; the others ignore it, and it compiles away).
     #[inline(always)]
-    pub fn update(&mut self, mask: L, t: L, id: L::Scalar) {
+    pub fn update(&mut self, mask: L, t: L, id: L::Scalar) -> L {
         let id = L::splat(id);
         let wins = t.simd_lt(self.t) | (t.simd_eq(self.t) & id.simd_lt(self.id));
         let take = mask & t.simd_gt(L::ZERO) & wins;
         self.t = take.select(t, self.t);
         self.id = take.select(id, self.id);
+        take
     }
 }

@@ -203,17 +203,20 @@ pub(crate) fn packet_blocks<const BW: usize>(
     let walk = || redo.map(|r| (r, r.walk(&p.packed, p.tiles.as_ref(), p.bvh.as_ref())));
     let redone = Mutex::new(Vec::new());
     // Re-decides the block's untrusted lanes (auto), noting their pixels in `mine`.
+    // Notes the pixels of the lanes `m` (bits) of the block at (bx, y) in `mine`.
+    let note_lanes = |mut m: u32, bx: usize, y: usize, mine: &mut Vec<usize>| {
+        while m != 0 {
+            let lane = m.trailing_zeros() as usize;
+            mine.push((y + lane / BW) * width + bx + lane % BW);
+            m &= m - 1;
+        }
+    };
     let fix = |walk: &Option<(&Redecide, redecide::Walk)>,
                (bx, y): (usize, usize),
                hit: &mut Hit8,
                mine: &mut Vec<usize>| {
         if let Some((r, walk)) = walk {
-            let mut m = r.fix_packet(walk, (bx, y, BW), hit);
-            while m != 0 {
-                let lane = m.trailing_zeros() as usize;
-                mine.push((y + lane / BW) * width + bx + lane % BW);
-                m &= m - 1;
-            }
+            note_lanes(r.fix_packet(walk, (bx, y, BW), hit), bx, y, mine);
         }
     };
     let note = |mine: Vec<usize>| {
@@ -255,8 +258,22 @@ pub(crate) fn packet_blocks<const BW: usize>(
                             let (d, active) = block_rays::<BW>(tables, bx, y, width, height);
                             let mut hit = Hit8::new(active);
                             let k = by / BLOCK_H * (TILE_W / BLOCK_W) + col;
-                            tiles.trace_packet_x8(&p.packed, &lists, k, &d, &mut hit);
-                            fix(&walk, (bx, y), &mut hit, &mut mine);
+                            match &walk {
+                                // auto: each lane carries its winner's trusted distance
+                                Some((r, w)) => {
+                                    let mut carried = f32x8::splat(f32::INFINITY);
+                                    let won = |kind: usize, i: usize, take: f32x8| {
+                                        carried =
+                                            take.select(f32x8::splat(r.carried(kind, i)), carried)
+                                    };
+                                    tiles.trace_packet_x8_with(
+                                        &p.packed, &lists, k, &d, &mut hit, won,
+                                    );
+                                    let m = r.fix_packet_carried(w, (bx, y, BW), &mut hit, carried);
+                                    note_lanes(m, bx, y, &mut mine);
+                                }
+                                None => tiles.trace_packet_x8(&p.packed, &lists, k, &d, &mut hit),
+                            }
                             store(ids, depth, bx, by, &hit);
                         }
                     }
@@ -554,7 +571,7 @@ impl<'s> Renderer<'s> {
         accel: Accel,
     ) -> Renderer<'s> {
         let p = PacketScene::new(scene, camera, accel);
-        let redecide = Redecide::new(scene, camera, &p.packed, p.tiles.as_ref());
+        let redecide = Redecide::new(scene, camera, &p.packed);
         let tables = camera.tables(BLOCK_W as u32, BLOCK_H as u32);
         Renderer {
             width: camera.width as usize,

@@ -43,8 +43,10 @@
 //! own. `tests/auto.rs` proves the guarantee against the oracle on the stress scenes and on
 //! scenes written for each failure class, with every acceleration.
 //!
-//! Cost: the bounds are solved for `t` once per primitive in setup (8 bytes per primitive); a
-//! packet's check is then one load per lane and two SIMD compares. A re-decision walks that
+//! Cost: the bounds are solved for `t` once per primitive in setup (12 bytes per primitive).
+//! Through the tiles (the default) each lane carries the trusted distance of the primitive that
+//! won it, one blend per entry tested, so a packet's check is one compare; through the BVH or
+//! without acceleration the check looks each lane's limits up. A re-decision walks that
 //! pixel's candidates in f64.
 
 use crate::accel::bvh::{ranges_x4d, trace_bvh_x1, trace_bvh_x4d};
@@ -85,10 +87,12 @@ pub struct Redecide<'s> {
     /// Per scene id: the distances `[lo, hi]` between which an f32 hit on that primitive is
     /// trusted (the bounds above solved for `t` once per primitive; f32, rounded inward).
     limits: Vec<[f32; 2]>,
-    /// Per tile of the packet kernel's tiles (or one entry for the whole image without them):
-    /// a distance up to which a hit on any primitive listed there is trusted (the least `hi`;
-    /// -inf where one needs `lo`). A packet whose hits are all nearer skips the per-lane check.
-    safe: Vec<f32>,
+    /// A distance up to which a hit on any primitive is trusted (the least `hi`; -inf where
+    /// one needs `lo`): a packet whose hits are all nearer skips the per-lane check.
+    safe: f32,
+    /// Per kind (sphere, triangle, quad), per index in the packed stores: the distance to
+    /// carry with a lane that primitive wins ([`Redecide::carried`]).
+    carried: [Vec<f32>; 3],
     /// The oracle's f64 ray tables, padded to whole 4x2 blocks (`dir_x1` is the oracle's ray).
     tables: RayTables<f64>,
 }
@@ -218,12 +222,7 @@ fn sphere_limits(oc: [f32; 3], r2: f32, c: f32) -> [f32; 2] {
 impl<'s> Redecide<'s> {
     /// The trusted distances of every primitive of `packed` (which `scene` seen by `camera`
     /// was packed into), and the camera's f64 ray tables.
-    pub fn new(
-        scene: &'s Scene,
-        camera: &Camera,
-        packed: &Packed,
-        tiles: Option<&Tiles>,
-    ) -> Redecide<'s> {
+    pub fn new(scene: &'s Scene, camera: &Camera, packed: &Packed) -> Redecide<'s> {
         let mut limits = vec![[0.0, f32::INFINITY]; scene.shapes.len()];
         let s = &packed.spheres;
         let spheres: Vec<[f32; 2]> = (0..s.len())
@@ -242,32 +241,30 @@ impl<'s> Redecide<'s> {
             }
         }
         let ids: [&[f32]; 3] = [&packed.spheres.id, &packed.triangles.id, &packed.quads.id];
-        let safe_of = |a: f32, kind: usize, i: usize| {
-            let [lo, hi] = limits[ids[kind][i] as usize];
-            if lo > 0.0 {
-                f32::NEG_INFINITY
-            } else {
-                a.min(hi)
-            }
-        };
-        let safe = match tiles {
-            Some(tiles) => tiles.per_tile(f32::INFINITY, safe_of),
-            None => {
-                let counts = ids.map(|v| v.len());
-                let mut a = f32::INFINITY;
-                for (kind, &n) in counts.iter().enumerate() {
-                    for i in 0..n {
-                        a = safe_of(a, kind, i);
-                    }
-                }
-                vec![a]
-            }
-        };
+        // the least `hi` over the scene (-inf if any primitive needs `lo`): a packet whose hits
+        // are all nearer needs no lookup (the BVH and no acceleration; tiles carry each lane's)
+        let safe = ids
+            .iter()
+            .flat_map(|v| v.iter())
+            .map(|&id| match limits[id as usize] {
+                [lo, _] if lo > 0.0 => f32::NEG_INFINITY,
+                [_, hi] => hi,
+            })
+            .fold(f32::INFINITY, f32::min);
+        let carried = ids.map(|v| {
+            v.par_iter()
+                .map(|&id| match limits[id as usize] {
+                    [lo, _] if lo > 0.0 => f32::NEG_INFINITY,
+                    [_, hi] => hi,
+                })
+                .collect()
+        });
         Redecide {
             scene,
             camera_eye: camera.eye,
             limits,
             safe,
+            carried,
             tables: camera.tables(4, 2),
         }
     }
@@ -301,11 +298,7 @@ impl<'s> Redecide<'s> {
         hit: &mut Hit8,
     ) -> u32 {
         let hits = hit.id.simd_ge(f32x8::ZERO);
-        let safe = match walk.tiles {
-            Some(tiles) => self.safe[tiles.tile_index(bx, by)],
-            None => self.safe[0],
-        };
-        if !(hits & hit.t.simd_gt(f32x8::splat(safe))).any() {
+        if !(hits & hit.t.simd_gt(f32x8::splat(self.safe))).any() {
             return 0;
         }
         // ids are exact in f32 and below `limits.len()`; background lanes read entry 0
@@ -323,7 +316,60 @@ impl<'s> Redecide<'s> {
             (f32x8::splat(lo), f32x8::splat(hi))
         };
         let outside = hit.t.simd_lt(lo) | hit.t.simd_gt(hi);
-        let mut untrusted = (outside & hits).to_bitmask();
+        self.redo(walk, (bx, by, bw), hit, (outside & hits).to_bitmask())
+    }
+
+    /// [`Redecide::fix_packet`] for a packet traced with each lane's trusted distance carried
+    /// along (`carried`: the `hi` of the primitive that won the lane, -inf where the primitive
+    /// has a lower limit too; [`Redecide::carried`]): only the lanes beyond it are looked up.
+    #[inline]
+    pub(crate) fn fix_packet_carried(
+        &self,
+        walk: &Walk,
+        (bx, by, bw): (usize, usize, usize),
+        hit: &mut Hit8,
+        carried: f32x8,
+    ) -> u32 {
+        let hits = hit.id.simd_ge(f32x8::ZERO);
+        let mut suspect = (hits & hit.t.simd_gt(carried)).to_bitmask();
+        if suspect == 0 {
+            return 0;
+        }
+        let (t, id) = (hit.t.to_array(), hit.id.to_array());
+        let mut untrusted = 0;
+        while suspect != 0 {
+            let lane = suspect.trailing_zeros() as usize;
+            let [lo, hi] = self
+                .limits
+                .get(id[lane] as usize)
+                .copied()
+                .unwrap_or([0.0, f32::INFINITY]);
+            if t[lane] < lo || t[lane] > hi {
+                untrusted |= 1 << lane;
+            }
+            suspect &= suspect - 1;
+        }
+        self.redo(walk, (bx, by, bw), hit, untrusted)
+    }
+
+    /// The trusted distance to carry for a lane won by primitive `index` of kind `kind`
+    /// (0 sphere, 1 triangle, 2 quad): its `hi`, or -inf when it also has a `lo`.
+    #[inline(always)]
+    pub(crate) fn carried(&self, kind: usize, index: usize) -> f32 {
+        self.carried[kind][index]
+    }
+
+    /// Decides again in f64 the lanes of `untrusted` (bits) of the packet at pixel `(bx, by)`.
+    /// Returns them.
+    #[inline]
+    fn redo(
+        &self,
+        walk: &Walk,
+        (bx, by, bw): (usize, usize, usize),
+        hit: &mut Hit8,
+        untrusted: u32,
+    ) -> u32 {
+        let mut untrusted = untrusted;
         if untrusted == 0 {
             return 0;
         }
