@@ -21,6 +21,7 @@
 
 pub(crate) mod build;
 pub(crate) mod bvh;
+pub(crate) mod footprint;
 pub(crate) mod tiles;
 
 pub(crate) use bvh::Bvh;

@@ -18,7 +18,7 @@
 //!   plus one whole pixel for the rounding of the projection itself (f64, far below a pixel).
 //! - Tiles of the rectangle that no accepted ray can reach are left out: a polygon's where all
 //!   four corner pixel rays of the tile lie outside one of its edge planes, a sphere's where
-//!   its centre lies more than `r` outside one of the tile's side planes (`TileFrusta`).
+//!   its centre lies more than `r` outside one of the tile's side planes (`footprint.rs`).
 //! - Anything that reaches to or behind the eye's plane (a vertex or the cube within
 //!   `NEAR_PLANE_REL` of it, the eye inside a sphere) gets the whole image: its projection is
 //!   unbounded. Rectangles are clipped to the image; one wholly outside it is dropped.
@@ -53,6 +53,9 @@
 //!
 //! `kernels_accept_rays_only_inside_rectangles_and_beyond_near` checks `t >= near` ray by ray.
 //!
+//! The screen geometry, the rectangles, the `near` bounds and the tiles' corner rays are
+//! computed in `footprint.rs`, from the derivations above.
+//!
 //! Precision assumed: f32 kernels fed by f64 setup (as `soa`); the bounds above hold for any
 //! scene `scene::validate::f32_range` accepts. Known to cost, not to fail: a primitive crossing
 //! the eye's plane is in every tile's list (correct, slow if there are many); a deep stack of
@@ -60,6 +63,7 @@
 //! Proven by tests/accel.rs (tiles == none, bit for bit: seed scenes, random scenes, primitives
 //! crossing the eye's plane, the eye inside a sphere, rectangles clipped at the border).
 
+use super::footprint::{SPHERE_MARGIN, Screen, TileFrusta, near_f32, polygon_footprint};
 use crate::camera::Camera;
 use crate::kernel::methods::wide64::{Hit4d, polygon_x4d, sphere_x4d};
 use crate::kernel::packet::{BLOCK_H, BLOCK_W};
@@ -73,7 +77,6 @@ use crate::kernel::{Hit, Hit8};
 use crate::real::{Real, V3};
 use crate::soa::Packed;
 use crate::soa::Records;
-use glam::DVec3;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU32, Ordering};
 use wide::{f32x8, f64x4};
@@ -83,23 +86,6 @@ use wide::{f32x8, f64x4};
 pub const TILE_W: usize = 8;
 /// Tile height in pixels: the renderer's strip height, so a strip is one row of tiles.
 pub const TILE_H: usize = 8;
-
-/// f32 unit roundoff.
-const U32: f64 = f32::EPSILON as f64 / 2.0;
-/// Multiple of `u k` taken off a polygon's distance bound (derived: 24; see the module comment).
-const GRAZING_U: f64 = 64.0;
-/// Relative margin taken off every polygon's `near` on top of the derived bounds.
-const POLYGON_MARGIN: f64 = 1e-5;
-/// Relative margin taken off a sphere's `|oc| - r` (derived: 7e-4; see the module comment).
-const SPHERE_MARGIN: f64 = 2e-3;
-/// A point closer to the eye's plane than this fraction of its distance makes a primitive's
-/// projection unbounded: it gets the whole image.
-const NEAR_PLANE_REL: f64 = 1e-6;
-/// Points this far behind the eye's plane (relative to their distance: a sine) cannot be hit
-/// by a forward ray: ~1e3 times the kernels' angular tolerance.
-const BEHIND_REL: f64 = 1e-3;
-/// Angular margin around every primitive, radians: twice (8u edge tolerance + 8u ray error).
-const ANGLE_MARGIN: f64 = 32.0 * (f32::EPSILON as f64 / 2.0);
 
 /// Kinds of list entries (top two bits of [`Entry::prim`]).
 const SPHERE: u32 = 0;
@@ -142,190 +128,6 @@ pub struct Tiles {
     /// `start[t]..start[t + 1]` is tile t's range of `entries` (tiles in row-major order).
     start: Vec<u32>,
     entries: Vec<Entry>,
-}
-
-/// The screen geometry a footprint is measured in.
-struct Screen {
-    eye: DVec3,
-    f: DVec3,
-    r: DVec3,
-    u: DVec3,
-    half_w: f64,
-    half_h: f64,
-    w: f64,
-    h: f64,
-    /// Margin in pixels (x, y).
-    margin: (f64, f64),
-}
-
-impl Screen {
-    fn new(c: &Camera) -> Screen {
-        let stretch = 1.0 + c.half_w * c.half_w + c.half_h * c.half_h;
-        let (w, h) = (c.width as f64, c.height as f64);
-        let px = |half: f64, n: f64| ANGLE_MARGIN * stretch / (2.0 * half / n) + 1.0;
-        Screen {
-            eye: c.eye,
-            f: c.f,
-            r: c.r,
-            u: c.u,
-            half_w: c.half_w,
-            half_h: c.half_h,
-            w,
-            h,
-            margin: (px(c.half_w, w), px(c.half_h, h)),
-        }
-    }
-
-    /// Pixel coordinates of eye-relative point `q`, or `None` when it is not safely in front.
-    fn project(&self, q: DVec3) -> Option<(f64, f64)> {
-        let z = q.dot(self.f);
-        // written so that a NaN is "not in front"
-        #[allow(clippy::neg_cmp_op_on_partial_ord)]
-        if !(z > NEAR_PLANE_REL * q.length()) {
-            return None;
-        }
-        let (sx, sy) = (q.dot(self.r) / z, q.dot(self.u) / z);
-        Some((
-            (sx / self.half_w + 1.0) * self.w / 2.0 - 0.5,
-            (1.0 - sy / self.half_h) * self.h / 2.0 - 0.5,
-        ))
-    }
-
-    /// The pixel rectangle (inclusive, clipped) covering the projections of `points` with the
-    /// margin; the whole image when a point is not in front; `None` when off screen or when
-    /// every point is clearly behind the eye (`BEHIND_REL`: no forward ray, widened by the
-    /// kernels' tolerance, reaches the convex hull of such points).
-    fn rect(&self, points: impl Iterator<Item = DVec3>) -> Option<[u16; 4]> {
-        let (mut x0, mut y0) = (f64::INFINITY, f64::INFINITY);
-        let (mut x1, mut y1) = (f64::NEG_INFINITY, f64::NEG_INFINITY);
-        let (mut unbounded, mut all_behind) = (false, true);
-        for q in points {
-            all_behind &= q.dot(self.f) < -BEHIND_REL * q.length();
-            match self.project(q) {
-                Some((x, y)) => (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y)),
-                None => unbounded = true,
-            }
-        }
-        if all_behind {
-            return None;
-        }
-        if unbounded {
-            return Some(self.whole());
-        }
-        let (mx, my) = self.margin;
-        let (x0, x1) = (
-            (x0 - mx).floor().max(0.0),
-            (x1 + mx).ceil().min(self.w - 1.0),
-        );
-        let (y0, y1) = (
-            (y0 - my).floor().max(0.0),
-            (y1 + my).ceil().min(self.h - 1.0),
-        );
-        // NaN compares false: a NaN rectangle is treated as off screen only if the comparisons
-        // say so; guard explicitly so a NaN gives the whole image instead.
-        if x0.is_nan() || x1.is_nan() || y0.is_nan() || y1.is_nan() {
-            return Some(self.whole());
-        }
-        (x0 <= x1 && y0 <= y1).then_some([x0 as u16, y0 as u16, x1 as u16, y1 as u16])
-    }
-
-    fn whole(&self) -> [u16; 4] {
-        [0, 0, self.w as u16 - 1, self.h as u16 - 1]
-    }
-}
-
-/// `near` (margins already taken) rounded down to f32.
-fn near_f32(near: f64) -> f32 {
-    let n = near.max(0.0);
-    let f = n as f32;
-    if f as f64 > n { f.next_down() } else { f }
-}
-
-/// The corner pixel rays of every tile, to drop the tiles of a polygon's rectangle that no ray
-/// the kernel accepts can reach. The rays of a tile's pixels are the convex combinations of its
-/// four corner pixels' rays (`camera.rs`: the screen position is affine in x and in y), so if
-/// every corner ray lies more than `a` radians outside an edge plane, so does every pixel ray
-/// (`d = sum w_k c_k`, `w_k >= 0`: `d . n < -a sum w_k |c_k| <= -a |d|`). The kernel accepts a
-/// ray up to 8u outside an edge plane, its f32 ray errs by a few u and its f32 dot product by
-/// ~3u: `ANGLE_MARGIN` (32u) covers all three. Computed in f64 with the kernel's own f32 edge
-/// normals. Proven by tests/accel.rs (tiles == none, bit for bit).
-struct TileFrusta {
-    cols: usize,
-    /// Per tile (row-major), the unit rays of its four corner pixels (clipped to the image):
-    /// (x0, y0), (x1, y0), (x0, y1), (x1, y1).
-    corners: Vec<[DVec3; 4]>,
-}
-
-impl TileFrusta {
-    fn new(c: &Camera) -> TileFrusta {
-        let (w, h) = (c.width as usize, c.height as usize);
-        let (cols, rows) = (w.div_ceil(TILE_W), h.div_ceil(TILE_H));
-        let sx: Vec<f64> = (0..c.width).map(|x| c.sx::<f64>(x)).collect();
-        let sy: Vec<f64> = (0..c.height).map(|y| c.sy::<f64>(y)).collect();
-        let ray = |x: usize, y: usize| (c.f + sx[x] * c.r + sy[y] * c.u).normalize();
-        let corners = (0..cols * rows)
-            .into_par_iter()
-            .map(|t| {
-                let (x0, y0) = (t % cols * TILE_W, t / cols * TILE_H);
-                let (x1, y1) = ((x0 + TILE_W - 1).min(w - 1), (y0 + TILE_H - 1).min(h - 1));
-                [ray(x0, y0), ray(x1, y0), ray(x0, y1), ray(x1, y1)]
-            })
-            .collect();
-        TileFrusta { cols, corners }
-    }
-
-    /// The unit rays of tile `(tx, ty)`'s four corner pixels.
-    #[inline]
-    fn corners(&self, (tx, ty): (usize, usize)) -> [DVec3; 4] {
-        self.corners[ty * self.cols + tx]
-    }
-
-    /// Whether entry `e` may be accepted by a ray of tile `tile`: a polygon unless the tile
-    /// lies wholly outside one of its edge planes, a sphere unless it lies wholly outside one of
-    /// the tile's four side planes.
-    fn reaches(&self, packed: &Packed, e: &Entry, tile: (usize, usize)) -> bool {
-        let i = (e.prim & INDEX_MASK) as usize;
-        match e.prim >> KIND_SHIFT {
-            TRIANGLE => self.reaches_polygon(&packed.triangles.n, i, tile),
-            QUAD => self.reaches_polygon(&packed.quads.n, i, tile),
-            _ => self.reaches_sphere(&packed.spheres, i, tile),
-        }
-    }
-
-    /// A ray meets a sphere only within `r` of its centre; the tile's rays all lie on the inner
-    /// side of the planes through the eye and two neighbouring corner rays, so a sphere whose
-    /// centre is more than `r` (plus `ANGLE_MARGIN |oc|`, for the f32 silhouette's ~4u |oc| and
-    /// the rays' error) outside one of them is met by none. The eye inside the sphere always
-    /// passes (`|oc| <= r`).
-    fn reaches_sphere(&self, s: &crate::soa::Spheres, i: usize, tile: (usize, usize)) -> bool {
-        let [c0, c1, c2, c3] = self.corners(tile);
-        let oc = DVec3::new(s.ocx[i] as f64, s.ocy[i] as f64, s.ocz[i] as f64);
-        let r = (s.r2[i] as f64).sqrt();
-        let slack = r + ANGLE_MARGIN * oc.length();
-        let centre = c0 + c1 + c2 + c3;
-        // the four sides, in order around the tile: top, right, bottom, left
-        [(c0, c1), (c1, c3), (c3, c2), (c2, c0)]
-            .iter()
-            .all(|&(a, b)| {
-                let n = a.cross(b);
-                let n = if n.dot(centre) < 0.0 { -n } else { n };
-                let len = n.length();
-                len == 0.0 || oc.dot(n) / len >= -slack
-            })
-    }
-
-    fn reaches_polygon<const N: usize>(
-        &self,
-        n: &[[Vec<f32>; 3]; N],
-        i: usize,
-        tile: (usize, usize),
-    ) -> bool {
-        let corners = self.corners(tile);
-        n.iter().all(|edge| {
-            let m = DVec3::new(edge[0][i] as f64, edge[1][i] as f64, edge[2][i] as f64);
-            corners.iter().any(|c| c.dot(m) >= -ANGLE_MARGIN)
-        })
-    }
 }
 
 impl Tiles {
@@ -393,7 +195,15 @@ impl Tiles {
             let single = tx0 == tx1 && ty0 == ty1;
             (ty0..=ty1)
                 .flat_map(move |ty| (tx0..=tx1).map(move |tx| (tx as usize, ty as usize)))
-                .filter(move |&tile| single || frusta.reaches(packed, &e, tile))
+                .filter(move |&tile| {
+                    single
+                        || frusta.reaches(
+                            packed,
+                            e.prim >> KIND_SHIFT,
+                            (e.prim & INDEX_MASK) as usize,
+                            tile,
+                        )
+                })
                 .map(move |(tx, ty)| ty * cols + tx)
         };
         // Counting sort: counts, prefix sum, scatter.
@@ -670,66 +480,12 @@ fn test_entry(p: &Packed, e: &Entry, d: &[f32x8; 3], hit: &mut Hit8) -> f32x8 {
     }
 }
 
-/// The rectangle and `near` of a convex polygon (see the module comment).
-/// `p` is the kernel's own plane distance (the f32 constant of its packed store).
-fn polygon_footprint<const N: usize>(
-    screen: &Screen,
-    v: &[DVec3; N],
-    p: f32,
-) -> (Option<[u16; 4]>, f64) {
-    let q = v.map(|p| p - screen.eye);
-    let rect = screen.rect(q.iter().copied());
-    let p = p as f64;
-    // D: distance from the eye to the polygon (a quad as triangles ABC and ACD), degraded by
-    // the grazing factor k = dmax / p (module comment); the plane bound holds at any angle.
-    let d = (1..N - 1)
-        .map(|i| closest_to_origin(q[0], q[i], q[i + 1]).length())
-        .fold(f64::INFINITY, f64::min);
-    let k = q.iter().map(|v| v.length()).fold(0.0, f64::max) / p;
-    let by_plane = p * (1.0 - 8.0 * U32);
-    let by_distance = d * (1.0 - GRAZING_U * U32 * k);
-    (rect, by_plane.max(by_distance) * (1.0 - POLYGON_MARGIN))
-}
-
-/// The point of triangle (a, b, c) closest to the origin: Ericson, "Real-Time Collision
-/// Detection" (2005), 5.1.5, by Voronoi regions of the vertices, edges and face (f64).
-fn closest_to_origin(a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
-    let (ab, ac, ap) = (b - a, c - a, -a);
-    let (d1, d2) = (ab.dot(ap), ac.dot(ap));
-    if d1 <= 0.0 && d2 <= 0.0 {
-        return a;
-    }
-    let bp = -b;
-    let (d3, d4) = (ab.dot(bp), ac.dot(bp));
-    if d3 >= 0.0 && d4 <= d3 {
-        return b;
-    }
-    let vc = d1 * d4 - d3 * d2;
-    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
-        return a + ab * (d1 / (d1 - d3));
-    }
-    let cp = -c;
-    let (d5, d6) = (ab.dot(cp), ac.dot(cp));
-    if d6 >= 0.0 && d5 <= d6 {
-        return c;
-    }
-    let vb = d5 * d2 - d1 * d6;
-    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
-        return a + ac * (d2 / (d2 - d6));
-    }
-    let va = d3 * d6 - d5 * d4;
-    if va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0 {
-        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-    }
-    let denom = 1.0 / (va + vb + vc);
-    a + ab * (vb * denom) + ac * (vc * denom)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::scene::{CameraSpec, Scene, Shape};
     use crate::soa::Prepared;
+    use glam::DVec3;
 
     /// xorshift64*, uniform in [0, 1).
     struct Rng(u64);
