@@ -1,0 +1,165 @@
+//! The entry point: [`Options`] (kernel, acceleration, intersection method) and a scene seen by
+//! a camera make a prepared [`Renderer`] (the setup phase), whose [`Renderer::render`] gives a
+//! [`Frame`] of ids and depths.
+
+use super::method::{self, Method};
+use super::redecide::Redecide;
+use super::{Frame, Kernel, PacketScene, Setup, f32_depth, packet_blocks, strip_count};
+use crate::accel::Accel;
+use crate::kernel::packet::{BLOCK_H, BLOCK_W};
+use std::sync::atomic::AtomicUsize;
+
+/// How to render: which kernel, which acceleration, which intersection method.
+/// `Options::default()` is what the command line does with no flags: 8-lane packets, automatic
+/// acceleration, the default method with `--precision auto` ([`Method::Auto`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Options {
+    /// The kernel (`--kernel`).
+    pub kernel: Kernel,
+    /// The acceleration (`--accel`): every kernel takes any.
+    pub accel: Accel,
+    /// The intersection method (`--method`, `--precision`); methods other than
+    /// [`Method::Default`] and [`Method::Auto`] run with the packet kernel only, and
+    /// [`Method::Auto`] with a scalar kernel is that kernel in its own precision.
+    pub method: Method,
+}
+
+impl Default for Options {
+    fn default() -> Options {
+        Options {
+            kernel: Kernel::Packet,
+            accel: Accel::Auto,
+            method: Method::Auto,
+        }
+    }
+}
+
+/// A scene prepared for one camera and one set of [`Options`]: every per-primitive constant
+/// and acceleration structure is built, so [`Renderer::render`] only traces rays. With
+/// [`Method::Auto`] it borrows the scene, whose shapes the f64 re-decisions read.
+pub struct Renderer<'s> {
+    width: usize,
+    height: usize,
+    job: Job<'s>,
+}
+
+enum Job<'s> {
+    Setup(Box<Setup>, Option<Box<Redecide<'s>>>),
+    Method(Box<dyn method::MethodRender + 's>),
+}
+
+impl<'s> Renderer<'s> {
+    /// Prepares `scene` seen by `camera` (the setup phase). Fails when the options contradict
+    /// each other: a method other than the default with a scalar kernel, or an acceleration
+    /// with a brute-force method.
+    pub fn new(
+        scene: &'s crate::scene::Scene,
+        camera: &crate::camera::Camera,
+        options: &Options,
+    ) -> crate::Result<Renderer<'s>> {
+        let job = match (options.method, options.kernel) {
+            (m, Kernel::Packet)
+                if m.is_brute_force() && matches!(options.accel, Accel::Bvh | Accel::Tiles) =>
+            {
+                return Err(crate::Error::usage(format!(
+                    "method {} tests every primitive; it takes no acceleration",
+                    m.name()
+                )));
+            }
+            (Method::Auto, Kernel::Packet) => {
+                return Ok(Renderer::auto(scene, camera, options.accel));
+            }
+            (Method::Default | Method::Auto, kernel) => Job::Setup(
+                Box::new(Setup::with_accel(kernel, options.accel, scene, camera)),
+                None,
+            ),
+            (m, Kernel::Packet) => Job::Method(m.prepare_with(scene, camera, options.accel)),
+            (m, _) => {
+                return Err(crate::Error::usage(format!(
+                    "method {} applies to the packet kernel only",
+                    m.name()
+                )));
+            }
+        };
+        Ok(Renderer {
+            width: camera.width as usize,
+            height: camera.height as usize,
+            job,
+        })
+    }
+
+    /// The packet kernel with the f32 hits that cannot be trusted decided again in f64
+    /// ([`Method::Auto`], `--precision auto`).
+    pub(crate) fn auto(
+        scene: &'s crate::scene::Scene,
+        camera: &crate::camera::Camera,
+        accel: Accel,
+    ) -> Renderer<'s> {
+        let p = PacketScene::new(scene, camera, accel);
+        let redecide = Redecide::new(scene, camera, &p.packed);
+        let tables = camera.tables(BLOCK_W as u32, BLOCK_H as u32);
+        Renderer {
+            width: camera.width as usize,
+            height: camera.height as usize,
+            job: Job::Setup(
+                Box::new(Setup::Packet(Box::new(p), tables)),
+                Some(Box::new(redecide)),
+            ),
+        }
+    }
+
+    /// The acceleration in use: `none` for the brute-force methods.
+    pub fn accel(&self) -> Accel {
+        match &self.job {
+            Job::Setup(s, _) => s.accel(),
+            Job::Method(m) => m.accel(),
+        }
+    }
+
+    /// Whether the render spreads over the current rayon pool's threads (every kernel of the
+    /// default method, and the f64x4 method); the brute-force methods trace on the calling
+    /// thread.
+    pub fn is_parallel(&self) -> bool {
+        match &self.job {
+            Job::Setup(..) => true,
+            Job::Method(m) => m.is_parallel(),
+        }
+    }
+
+    /// Whether f32 hits that cannot be trusted are decided again in f64 (`--precision auto`
+    /// with the packet kernel).
+    pub fn redecides(&self) -> bool {
+        matches!(self.job, Job::Setup(_, Some(_)))
+    }
+
+    /// Renders the frame in the current rayon pool. Depth is reported in f32 by every kernel
+    /// (f64 distances rounded once).
+    pub fn render(&self) -> Frame<f32> {
+        self.render_counting(None)
+    }
+
+    /// How many units of work [`Renderer::render_counting`] counts (strips of rows).
+    pub fn work_units(&self) -> usize {
+        strip_count(self.height)
+    }
+
+    /// [`Renderer::render`], adding 1 to `progress` per finished strip of rows (methods other
+    /// than the default count nothing).
+    pub fn render_counting(&self, progress: Option<&AtomicUsize>) -> Frame<f32> {
+        self.render_marking(progress).0
+    }
+
+    /// [`Renderer::render_counting`], also returning the pixels whose f32 hit was decided again
+    /// in f64 (row-major indices, ascending; empty unless [`Renderer::redecides`]).
+    pub fn render_marking(&self, progress: Option<&AtomicUsize>) -> (Frame<f32>, Vec<usize>) {
+        let (w, h) = (self.width, self.height);
+        match &self.job {
+            Job::Setup(s, Some(r)) => match s.as_ref() {
+                Setup::Packet(p, t) => packet_blocks::<BLOCK_W>(p, t, w, h, progress, Some(r)),
+                other => (other.render_counting(w, h, progress), Vec::new()),
+            },
+            Job::Setup(s, None) => (s.render_counting(w, h, progress), Vec::new()),
+            Job::Method(m) => (f32_depth(m.render()), Vec::new()),
+        }
+    }
+}
