@@ -95,3 +95,17 @@ pub fn dot<T: Real>(a: V3<T>, b: V3<T>) -> T {
 pub fn v3<T: Real>(v: glam::DVec3) -> V3<T> {
     [T::from_f64(v.x), T::from_f64(v.y), T::from_f64(v.z)]
 }
+
+/// The largest f32 not above `x` (rounding toward -inf): a lower bound that stays one.
+#[inline]
+pub fn f32_down(x: f64) -> f32 {
+    let f = x as f32;
+    if f as f64 > x { f.next_down() } else { f }
+}
+
+/// The smallest f32 not below `x` (rounding toward +inf): an upper bound that stays one.
+#[inline]
+pub fn f32_up(x: f64) -> f32 {
+    let f = x as f32;
+    if (f as f64) < x { f.next_up() } else { f }
+}

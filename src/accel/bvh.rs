@@ -21,7 +21,7 @@ use crate::kernel::methods::wide64::{Hit4d, polygon_x4d, sphere_x4d};
 use crate::kernel::packet::{polygons_x8, spheres_x8};
 use crate::kernel::scalar::ranges_x1;
 use crate::kernel::{Hit, Hit8};
-use crate::real::{Real, V3};
+use crate::real::{Real, V3, f32_down, f32_up};
 use crate::scene::Scene;
 use crate::soa::{Packed, Prepared, Records};
 use glam::DVec3;
@@ -38,17 +38,6 @@ pub struct Node {
 }
 
 const LEAF: u32 = 1 << 31;
-
-/// Rounds toward -inf / +inf, so an f32 box contains its f64 box.
-fn down(x: f64) -> f32 {
-    let f = x as f32;
-    if f as f64 > x { f.next_down() } else { f }
-}
-
-fn up(x: f64) -> f32 {
-    let f = x as f32;
-    if (f as f64) < x { f.next_up() } else { f }
-}
 
 /// A BVH over one scene's primitives, seen from one eye.
 #[derive(Debug, Clone, Default)]
@@ -68,8 +57,8 @@ impl Bvh {
             .nodes
             .iter()
             .map(|n| Node {
-                min: n.bounds.min.to_array().map(down),
-                max: n.bounds.max.to_array().map(up),
+                min: n.bounds.min.to_array().map(f32_down),
+                max: n.bounds.max.to_array().map(f32_up),
                 index: n.index,
                 meta: if n.leaf { LEAF } else { n.axis as u32 },
             })

@@ -118,9 +118,7 @@ impl Screen {
 
 /// `near` (margins already taken) rounded down to f32.
 pub(super) fn near_f32(near: f64) -> f32 {
-    let n = near.max(0.0);
-    let f = n as f32;
-    if f as f64 > n { f.next_down() } else { f }
+    crate::real::f32_down(near.max(0.0))
 }
 
 /// The corner pixel rays of every tile, to drop the tiles of a polygon's rectangle that no ray

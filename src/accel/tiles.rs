@@ -378,16 +378,9 @@ impl Tiles {
         d: V3<T>,
     ) -> Hit<T> {
         let mut hit = Hit::NONE;
-        for e in self.list(x / TILE_W, y / TILE_H) {
-            if hit.t < T::from_f64(e.near as f64) {
-                break;
-            }
-            let [x0, y0, x1, y1] = e.rect.map(usize::from);
-            if x < x0 || x > x1 || y < y0 || y > y1 {
-                continue;
-            }
-            let i = (e.prim & INDEX_MASK) as usize;
-            let found = match e.prim >> KIND_SHIFT {
+        let goes_on = |h: &Hit<T>, near: f32| h.t >= T::from_f64(near as f64);
+        self.walk_span([x, x, y], &mut hit, goes_on, |h, kind, i| {
+            let found = match kind {
                 SPHERE => p
                     .sphere(i)
                     .and_then(|(k, id)| Some((sphere_x1(&k, d)?, id))),
@@ -397,9 +390,9 @@ impl Tiles {
                 _ => p.quad(i).and_then(|(k, id)| Some((polygon_x1(&k, d)?, id))),
             };
             if let Some((t, id)) = found {
-                hit.update(t, id);
+                h.update(t, id);
             }
-        }
+        });
         hit
     }
 }
@@ -418,16 +411,9 @@ impl Tiles {
         d: &[f64x4; 3],
         hit: &mut Hit4d,
     ) {
-        for e in self.list(x0 / TILE_W, y / TILE_H) {
-            if !hit.t.simd_ge(f64x4::splat(e.near as f64)).any() {
-                return;
-            }
-            let [rx0, ry0, rx1, ry1] = e.rect.map(usize::from);
-            if x1 < rx0 || x0 > rx1 || y < ry0 || y > ry1 {
-                continue;
-            }
-            let i = (e.prim & INDEX_MASK) as usize;
-            let found = match e.prim >> KIND_SHIFT {
+        let goes_on = |h: &Hit4d, near: f32| h.t.simd_ge(f64x4::splat(near as f64)).any();
+        self.walk_span([x0, x1, y], hit, goes_on, |hit, kind, i| {
+            let found = match kind {
                 SPHERE => p
                     .sphere(i)
                     .and_then(|(k, id)| Some((sphere_x4d(&k, d)?, id))),
@@ -441,6 +427,29 @@ impl Tiles {
             if let Some(((mask, t), id)) = found {
                 hit.update(mask, t, id as f64);
             }
+        });
+    }
+
+    /// The walk the scalar and f64x4 traces share: the list of the tile of pixels `x0..=x1` of
+    /// row `y`, nearest first, while `goes_on(hit, near)` (some ray may still find a nearer
+    /// hit), calling `visit(hit, kind, index)` on each entry whose rectangle reaches the span.
+    #[inline(always)]
+    fn walk_span<H>(
+        &self,
+        [x0, x1, y]: [usize; 3],
+        hit: &mut H,
+        goes_on: impl Fn(&H, f32) -> bool,
+        mut visit: impl FnMut(&mut H, u32, usize),
+    ) {
+        for e in self.list(x0 / TILE_W, y / TILE_H) {
+            if !goes_on(hit, e.near) {
+                return;
+            }
+            let [rx0, ry0, rx1, ry1] = e.rect.map(usize::from);
+            if x1 < rx0 || x0 > rx1 || y < ry0 || y > ry1 {
+                continue;
+            }
+            visit(hit, e.prim >> KIND_SHIFT, (e.prim & INDEX_MASK) as usize);
         }
     }
 }

@@ -57,6 +57,7 @@ use crate::kernel::methods::wide64::{Hit4d, dir_x4d};
 use crate::kernel::polygon::{QuadK, TriangleK};
 use crate::kernel::scalar::trace_x1;
 use crate::kernel::sphere::SphereK;
+use crate::real::{f32_down, f32_up};
 use crate::scene::Scene;
 use crate::soa::{Packed, Records, SceneRecords};
 use rayon::prelude::*;
@@ -158,20 +159,10 @@ impl Records<f64> for Cached<'_> {
     }
 }
 
-/// The largest f32 not above `x`, the smallest not below.
-fn down(x: f64) -> f32 {
-    let f = x as f32;
-    if f as f64 > x { f.next_down() } else { f }
-}
-fn up(x: f64) -> f32 {
-    let f = x as f32;
-    if (f as f64) < x { f.next_up() } else { f }
-}
-
 /// The distances at which a hit on a polygon with plane distance `p` is trusted:
 /// `u (POLY_A + POLY_B t / p) <= BUDGET`.
 fn polygon_limits(p: f32) -> [f32; 2] {
-    [0.0, down(p as f64 * (BUDGET / U - POLY_A) / POLY_B)]
+    [0.0, f32_down(p as f64 * (BUDGET / U - POLY_A) / POLY_B)]
 }
 
 /// The distances at which a hit on the sphere (`oc`, `r2`, `c`: its f32 constants) is trusted.
@@ -198,7 +189,7 @@ fn sphere_limits(oc: [f32; 3], r2: f32, c: f32) -> [f32; 2] {
                 hi = mid
             }
         }
-        [0.0, down(lo)]
+        [0.0, f32_down(lo)]
     } else {
         // eye inside: decreasing in t over (0, r + |oc|]
         let excess = |t: f64| SPHERE_B * len / t + 2.0 * SPHERE_C * r * len / (t * t - c) - budget;
@@ -215,7 +206,7 @@ fn sphere_limits(oc: [f32; 3], r2: f32, c: f32) -> [f32; 2] {
                 lo = mid
             }
         }
-        [up(hi), f32::INFINITY]
+        [f32_up(hi), f32::INFINITY]
     }
 }
 
