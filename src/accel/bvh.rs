@@ -19,6 +19,7 @@ use super::build::{self, Built};
 use crate::kernel::lanes::Lanes;
 use crate::kernel::methods::wide64::{Hit4d, polygon_x4d, sphere_x4d};
 use crate::kernel::packet::{polygons_x8, spheres_x8};
+use crate::kernel::polygon::PolyK;
 use crate::kernel::scalar::ranges_x1;
 use crate::kernel::{Hit, Hit8};
 use crate::real::{Real, V3, f32_down, f32_up};
@@ -212,15 +213,20 @@ pub fn ranges_x4d(
             hit.update(m, tt, id as f64);
         }
     }
-    for i in t {
-        if let Some((k, id)) = p.triangle(i)
-            && let Some((m, tt)) = polygon_x4d(&k, d)
-        {
-            hit.update(m, tt, id as f64);
-        }
-    }
-    for i in q {
-        if let Some((k, id)) = p.quad(i)
+    polygons_x4d(|i| p.triangle(i), t, d, hit);
+    polygons_x4d(|i| p.quad(i), q, d, hit);
+}
+
+/// The polygons `range` (records from `get`) against four f64 rays `d`.
+#[inline(always)]
+fn polygons_x4d<const N: usize>(
+    get: impl Fn(usize) -> Option<(PolyK<f64, N>, i32)>,
+    range: std::ops::Range<usize>,
+    d: &[f64x4; 3],
+    hit: &mut Hit4d,
+) {
+    for i in range {
+        if let Some((k, id)) = get(i)
             && let Some((m, tt)) = polygon_x4d(&k, d)
         {
             hit.update(m, tt, id as f64);

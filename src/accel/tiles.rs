@@ -63,15 +63,15 @@
 //! Proven by tests/accel.rs (tiles == none, bit for bit: seed scenes, random scenes, primitives
 //! crossing the eye's plane, the eye inside a sphere, rectangles clipped at the border).
 
+use super::bvh::ranges_x4d;
 use super::footprint::{SPHERE_MARGIN, Screen, TileFrusta, near_f32, polygon_footprint};
 use crate::camera::Camera;
-use crate::kernel::methods::wide64::{Hit4d, polygon_x4d, sphere_x4d};
+use crate::kernel::methods::wide64::Hit4d;
 use crate::kernel::packet::{BLOCK_H, BLOCK_W};
 use crate::kernel::polygon::polygon_lanes_all;
-use crate::kernel::polygon::polygon_x1;
 #[cfg(test)]
 use crate::kernel::polygon::polygon_x8;
-use crate::kernel::sphere::sphere_x1;
+use crate::kernel::scalar::ranges_x1;
 use crate::kernel::sphere::sphere_x8;
 use crate::kernel::{Hit, Hit8};
 use crate::real::{Real, V3};
@@ -380,18 +380,7 @@ impl Tiles {
         let mut hit = Hit::NONE;
         let goes_on = |h: &Hit<T>, near: f32| h.t >= T::from_f64(near as f64);
         self.walk_span([x, x, y], &mut hit, goes_on, |h, kind, i| {
-            let found = match kind {
-                SPHERE => p
-                    .sphere(i)
-                    .and_then(|(k, id)| Some((sphere_x1(&k, d)?, id))),
-                TRIANGLE => p
-                    .triangle(i)
-                    .and_then(|(k, id)| Some((polygon_x1(&k, d)?, id))),
-                _ => p.quad(i).and_then(|(k, id)| Some((polygon_x1(&k, d)?, id))),
-            };
-            if let Some((t, id)) = found {
-                h.update(t, id);
-            }
+            ranges_x1(p, only(kind, i), d, h)
         });
         hit
     }
@@ -413,20 +402,7 @@ impl Tiles {
     ) {
         let goes_on = |h: &Hit4d, near: f32| h.t.simd_ge(f64x4::splat(near as f64)).any();
         self.walk_span([x0, x1, y], hit, goes_on, |hit, kind, i| {
-            let found = match kind {
-                SPHERE => p
-                    .sphere(i)
-                    .and_then(|(k, id)| Some((sphere_x4d(&k, d)?, id))),
-                TRIANGLE => p
-                    .triangle(i)
-                    .and_then(|(k, id)| Some((polygon_x4d(&k, d)?, id))),
-                _ => p
-                    .quad(i)
-                    .and_then(|(k, id)| Some((polygon_x4d(&k, d)?, id))),
-            };
-            if let Some(((mask, t), id)) = found {
-                hit.update(mask, t, id as f64);
-            }
+            ranges_x4d(p, only(kind, i), d, hit)
         });
     }
 
@@ -452,6 +428,15 @@ impl Tiles {
             visit(hit, e.prim >> KIND_SHIFT, (e.prim & INDEX_MASK) as usize);
         }
     }
+}
+
+/// The ranges (spheres, triangles, quads) holding just primitive `i` of kind `kind`, for the
+/// shared kernel loops (`kernel::scalar::ranges_x1`, `accel::bvh::ranges_x4d`).
+#[inline(always)]
+fn only(kind: u32, i: usize) -> [std::ops::Range<usize>; 3] {
+    let mut r = [0..0, 0..0, 0..0];
+    r[kind as usize] = i..i + 1;
+    r
 }
 
 /// Packets per tile: 4x2 blocks of the packet kernel.

@@ -3,7 +3,7 @@
 //! the records come from a store or are computed when asked (`soa::Records`).
 
 use crate::kernel::Hit;
-use crate::kernel::polygon::polygon_x1;
+use crate::kernel::polygon::{PolyK, polygon_x1};
 use crate::kernel::sphere::sphere_x1;
 use crate::real::{Real, V3};
 use crate::soa::Records;
@@ -35,15 +35,20 @@ pub fn ranges_x1<T: Real>(
             hit.update(t, id);
         }
     }
-    for i in t {
-        if let Some((k, id)) = p.triangle(i)
-            && let Some(t) = polygon_x1(&k, d)
-        {
-            hit.update(t, id);
-        }
-    }
-    for i in q {
-        if let Some((k, id)) = p.quad(i)
+    polygons_x1(|i| p.triangle(i), t, d, hit);
+    polygons_x1(|i| p.quad(i), q, d, hit);
+}
+
+/// The polygons `range` (records from `get`) against the ray `d`: triangles and quads alike.
+#[inline(always)]
+fn polygons_x1<T: Real, const N: usize>(
+    get: impl Fn(usize) -> Option<(PolyK<T, N>, i32)>,
+    range: Range<usize>,
+    d: V3<T>,
+    hit: &mut Hit<T>,
+) {
+    for i in range {
+        if let Some((k, id)) = get(i)
             && let Some(t) = polygon_x1(&k, d)
         {
             hit.update(t, id);
