@@ -21,7 +21,7 @@ use crate::kernel::methods::wide64::{Hit4d, polygon_x4d, sphere_x4d};
 use crate::kernel::packet::{polygons_x8, spheres_x8};
 use crate::kernel::polygon::PolyK;
 use crate::kernel::scalar::ranges_x1;
-use crate::kernel::{Hit, Hit8};
+use crate::kernel::{Hit, Hit8, HitLanes};
 use crate::real::{Real, V3, f32_down, f32_up};
 use crate::scene::Scene;
 use crate::soa::{Packed, Prepared, Records};
@@ -164,20 +164,27 @@ fn enters<L: Lanes>(n: &Node, inv: &[L; 3], best: L) -> bool {
 /// Nearest hits of the rays `d` among the primitives of `p` (packed in `bvh`'s leaf order).
 #[inline]
 pub fn trace_bvh_x8(p: &Packed, bvh: &Bvh, d: &[f32x8; 3], hit: &mut Hit8) {
-    let inv = inverse(d);
-    let neg = d.map(|c| c.first() < 0.0);
-    walk(
-        bvh,
-        neg,
-        hit,
-        |n, h| enters(n, &inv, h.t),
-        |[s, t, q], h| {
-            spheres_x8(&p.spheres, s.0 as usize..s.1 as usize, d, h);
-            polygons_x8(&p.triangles, t.0 as usize..t.1 as usize, d, h);
-            polygons_x8(&p.quads, q.0 as usize..q.1 as usize, d, h);
-        },
-    );
+    walk_lanes(bvh, d, hit, |[s, t, q], h| {
+        spheres_x8(&p.spheres, s.0 as usize..s.1 as usize, d, h);
+        polygons_x8(&p.triangles, t.0 as usize..t.1 as usize, d, h);
+        polygons_x8(&p.quads, q.0 as usize..q.1 as usize, d, h);
+    });
 }
+
+/// [`walk`] for a packet of rays `d` in lanes `L`: the slab test of every lane, children ordered
+/// by the first lane's direction.
+#[inline(always)]
+fn walk_lanes<L: Lanes>(
+    bvh: &Bvh,
+    d: &[L; 3],
+    hit: &mut HitLanes<L>,
+    leaf: impl FnMut(&[(u32, u32); 3], &mut HitLanes<L>),
+) {
+    let inv = inverse(d);
+    let neg = d.map(|c| c.first() < L::Scalar::ZERO);
+    walk(bvh, neg, hit, |n, h| enters(n, &inv, h.t), leaf);
+}
+
 /// Nearest hits of four f64 rays `d` among the primitives of `p` (in `bvh`'s leaf order), with
 /// the default kernels in f64x4 lanes (`kernel::methods::wide64`, each lane the oracle's
 /// `polygon_x1::<f64>` / `sphere_x1::<f64>` bit for bit). The f64 kernels accept rays within a
@@ -185,15 +192,9 @@ pub fn trace_bvh_x8(p: &Packed, bvh: &Bvh, d: &[f32x8; 3], hit: &mut Hit8) {
 /// in f64 errs less than in f32, so every box still contains every hit it must.
 #[inline]
 pub fn trace_bvh_x4d(p: &impl Records<f64>, bvh: &Bvh, d: &[f64x4; 3], hit: &mut Hit4d) {
-    let inv = inverse(d);
-    let neg = d.map(|c| c.first() < 0.0);
-    walk(
-        bvh,
-        neg,
-        hit,
-        |n, h| enters(n, &inv, h.t),
-        |leaf, h| ranges_x4d(p, leaf.map(|(a, b)| a as usize..b as usize), d, h),
-    );
+    walk_lanes(bvh, d, hit, |leaf, h| {
+        ranges_x4d(p, leaf.map(|(a, b)| a as usize..b as usize), d, h)
+    });
 }
 
 /// The spheres, triangles and quads in `ranges` of `p` against four f64 rays `d`, keeping the
