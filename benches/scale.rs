@@ -84,8 +84,7 @@ fn scaling_scene(kind: &str, n: usize) -> Scene {
             up: DVec3::Y,
             fov_deg: Some(60.0),
         },
-        lines: vec![0; shapes.len()],
-        shapes,
+        shapes: shapes.into(),
         warnings: Vec::new(),
     }
 }

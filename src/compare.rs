@@ -94,9 +94,9 @@ fn classify(scene: &Scene, eye: DVec3, d: V3<f64>, a: i32, b: i32) -> u8 {
 /// background) on the f64 ray `d` from `eye`, with an edge band of `band` radians: what
 /// `compare` does with [`EDGE_BAND`], and the `--precision auto` tests with 1e-6.
 pub fn classify_within(scene: &Scene, eye: DVec3, d: V3<f64>, a: i32, b: i32, band: f64) -> u8 {
-    let shape = |id: i32| (id >= 0).then(|| &scene.shapes[id as usize]);
+    let shape = |id: i32| (id >= 0).then(|| scene.shapes.get(id as usize));
     let (sa, sb) = (shape(a), shape(b));
-    if let (Some(sa), Some(sb)) = (sa, sb) {
+    if let (Some(sa), Some(sb)) = (&sa, &sb) {
         let ta = hit_with_slack(sa, eye, d, band);
         let tb = hit_with_slack(sb, eye, d, band);
         if let (Some(ta), Some(tb)) = (ta, tb)
@@ -110,7 +110,7 @@ pub fn classify_within(scene: &Scene, eye: DVec3, d: V3<f64>, a: i32, b: i32, ba
             hit_with_slack(s, eye, d, band).is_some() != hit_with_slack(s, eye, d, -band).is_some()
         })
     };
-    if near_edge(sa) || near_edge(sb) {
+    if near_edge(sa.as_ref()) || near_edge(sb.as_ref()) {
         EDGE
     } else {
         UNEXCUSED

@@ -9,7 +9,7 @@
 use crate::kernel::polygon::{PolyK, QuadK, TriangleK};
 use crate::kernel::sphere::SphereK;
 use crate::real::Real;
-use crate::scene::{Scene, Shape};
+use crate::scene::{Scene, Shape, Shapes};
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -83,15 +83,15 @@ impl Prepared<f64> {
         for (id, shape) in scene.shapes.iter().enumerate() {
             match shape {
                 Shape::Sphere { center, radius } => {
-                    p.spheres.push(SphereK::new(*center, *radius, eye), id)
+                    p.spheres.push(SphereK::new(center, radius, eye), id)
                 }
                 Shape::Triangle(v) => {
-                    if let Some(k) = TriangleK::triangle(v, eye) {
+                    if let Some(k) = TriangleK::triangle(&v, eye) {
                         p.triangles.push(k, id)
                     }
                 }
                 Shape::Quad(v) => {
-                    if let Some(k) = QuadK::quad(v, eye) {
+                    if let Some(k) = QuadK::quad(&v, eye) {
                         p.quads.push(k, id)
                     }
                 }
@@ -149,7 +149,7 @@ impl<T: Copy> Records<T> for Prepared<T> {
 /// keep no f64 copy of the scene.
 #[derive(Debug, Clone, Copy)]
 pub struct SceneRecords<'a> {
-    shapes: &'a [Shape],
+    shapes: &'a Shapes,
     ids: [&'a [f32]; 3],
     eye: DVec3,
 }
@@ -165,9 +165,9 @@ impl<'a> SceneRecords<'a> {
     }
 
     #[inline(always)]
-    fn shape(&self, kind: usize, i: usize) -> (&'a Shape, i32) {
+    fn shape(&self, kind: usize, i: usize) -> (Shape, i32) {
         let id = self.ids[kind][i] as i32;
-        (&self.shapes[id as usize], id)
+        (self.shapes.get(id as usize), id)
     }
 }
 
@@ -178,20 +178,20 @@ impl Records<f64> for SceneRecords<'_> {
     fn sphere(&self, i: usize) -> Option<(SphereK<f64>, i32)> {
         match self.shape(0, i) {
             (Shape::Sphere { center, radius }, id) => {
-                Some((SphereK::new(*center, *radius, self.eye), id))
+                Some((SphereK::new(center, radius, self.eye), id))
             }
             _ => None,
         }
     }
     fn triangle(&self, i: usize) -> Option<(TriangleK<f64>, i32)> {
         match self.shape(1, i) {
-            (Shape::Triangle(v), id) => TriangleK::triangle(v, self.eye).map(|k| (k, id)),
+            (Shape::Triangle(v), id) => TriangleK::triangle(&v, self.eye).map(|k| (k, id)),
             _ => None,
         }
     }
     fn quad(&self, i: usize) -> Option<(QuadK<f64>, i32)> {
         match self.shape(2, i) {
-            (Shape::Quad(v), id) => QuadK::quad(v, self.eye).map(|k| (k, id)),
+            (Shape::Quad(v), id) => QuadK::quad(&v, self.eye).map(|k| (k, id)),
             _ => None,
         }
     }
@@ -373,22 +373,21 @@ impl Packed {
         let parts: Vec<Packed> = scene
             .shapes
             .par_chunks(CHUNK)
-            .enumerate()
-            .map(|(c, shapes)| {
+            .map(|(first, shapes)| {
                 let mut part = Packed::default();
-                for (j, shape) in shapes.iter().enumerate() {
-                    let id = (c * CHUNK + j) as f32;
+                for (j, shape) in shapes.enumerate() {
+                    let id = (first + j) as f32;
                     match shape {
                         Shape::Sphere { center, radius } => part
                             .spheres
-                            .push(&SphereK::new(*center, *radius, eye).cast(), id),
+                            .push(&SphereK::new(center, radius, eye).cast(), id),
                         Shape::Triangle(v) => {
-                            if let Some(k) = TriangleK::triangle(v, eye) {
+                            if let Some(k) = TriangleK::triangle(&v, eye) {
                                 part.triangles.push(&k.cast(), id)
                             }
                         }
                         Shape::Quad(v) => {
-                            if let Some(k) = QuadK::quad(v, eye) {
+                            if let Some(k) = QuadK::quad(&v, eye) {
                                 part.quads.push(&k.cast(), id)
                             }
                         }
@@ -419,7 +418,7 @@ impl Packed {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::CameraSpec;
+    use crate::scene::{CameraSpec, Mesh};
 
     #[test]
     fn packed_columns_round_trip_the_f32_records() {
@@ -445,8 +444,8 @@ mod tests {
                 ]),
                 // edge-on from the eye: left out
                 Shape::Triangle([DVec3::ZERO, DVec3::Z, DVec3::X]),
-            ],
-            lines: vec![1, 2, 3, 4],
+            ]
+            .into(),
             warnings: Vec::new(),
         };
         let p = Prepared::new(&scene, scene.camera.eye);
@@ -459,13 +458,34 @@ mod tests {
         assert_eq!(packed.triangles.get(0), f.triangles.k[0]);
         assert_eq!(packed.quads.get(0), f.quads.k[0]);
         assert_eq!(packed.quads.id, vec![2.0]);
-        // The parallel path, over several chunks, gives the same columns.
+        // The parallel path, over several chunks, gives the same columns, with the triangles
+        // loose or in a mesh.
         let mut big = scene.clone();
-        big.shapes = scene.shapes.repeat(10_000);
-        big.lines = vec![1; big.shapes.len()];
+        let loose: Vec<Shape> = scene.shapes.iter().collect();
+        big.shapes = loose.repeat(10_000).into();
         let direct = Packed::from_scene(&big, big.camera.eye);
         let serial = Packed::new(&Prepared::new(&big, big.camera.eye));
         assert_eq!(direct.triangles.len(), 10_000);
+        assert_eq!(format!("{direct:?}"), format!("{serial:?}"));
+        let mut mesh = Mesh::default();
+        for shape in &loose {
+            if let Shape::Triangle(v) = shape {
+                let n = mesh.vertices.len() as u32;
+                mesh.vertices.extend(v);
+                mesh.faces.push([n, n + 1, n + 2]);
+            }
+        }
+        let mut meshed = Shapes::new();
+        for _ in 0..10_000 {
+            meshed.push(loose[1], 2);
+            meshed.push_mesh(mesh.clone(), 1);
+            meshed.push(loose[2], 3);
+        }
+        big.shapes = meshed;
+        let direct = Packed::from_scene(&big, big.camera.eye);
+        let serial = Packed::new(&Prepared::new(&big, big.camera.eye));
+        assert_eq!(direct.triangles.len(), 10_000);
+        assert_eq!(direct.triangles.id[1], 5.0);
         assert_eq!(format!("{direct:?}"), format!("{serial:?}"));
     }
 }

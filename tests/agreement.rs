@@ -102,9 +102,9 @@ fn reference(mesh: Mesh, scene: &Scene) -> Option<HitTest> {
                     let Shape::Triangle([a, b, c]) = s else {
                         panic!("convex meshes are triangles")
                     };
-                    let n = (*b - *a).cross(*c - *a).normalize();
-                    let n = if n.dot(centroid - *a) > 0.0 { -n } else { n };
-                    (n, n.dot(*a))
+                    let n = (b - a).cross(c - a).normalize();
+                    let n = if n.dot(centroid - a) > 0.0 { -n } else { n };
+                    (n, n.dot(a))
                 })
                 .collect();
             Some(Box::new(move |eye: DVec3, d: DVec3| {
@@ -160,7 +160,12 @@ fn check(name: &str, scene: &Scene, w: u32, h: u32, mesh: Mesh, min_hit: f64) ->
         }
         let (x, y) = (i % w as usize, i / w as usize);
         let d = DVec3::from(t64.dir_x1(x, y));
-        let cos = incidence_cos(&scene.shapes[id as usize], camera.eye, d, oracle.depth[i]);
+        let cos = incidence_cos(
+            &scene.shapes.get(id as usize),
+            camera.eye,
+            d,
+            oracle.depth[i],
+        );
         let rel = (packet.depth[i] as f64 - oracle.depth[i]).abs() / oracle.depth[i];
         let units = rel * cos / U;
         if units > worst_units {

@@ -21,10 +21,10 @@ fn mesh_triangles_take_consecutive_ids_from_their_position() {
     );
     let scene = load_scene(&sc).unwrap();
     assert_eq!(scene.shapes.len(), 4);
-    assert!(matches!(scene.shapes[1], Shape::Triangle(_)));
-    assert!(matches!(scene.shapes[2], Shape::Triangle(_)));
-    assert!(matches!(scene.shapes[3], Shape::Sphere { .. }));
-    assert_eq!(scene.lines, vec![2, 3, 3, 4]);
+    assert!(matches!(scene.shapes.get(1), Shape::Triangle(_)));
+    assert!(matches!(scene.shapes.get(2), Shape::Triangle(_)));
+    assert!(matches!(scene.shapes.get(3), Shape::Sphere { .. }));
+    assert_eq!(scene.shapes.lines().collect::<Vec<_>>(), vec![2, 3, 3, 4]);
     assert!(scene.warnings.is_empty());
 }
 

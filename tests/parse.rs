@@ -62,14 +62,14 @@ fn parses_every_statement() {
     assert_eq!(s.camera.up, d(0., 0., 1.));
     assert_eq!(s.camera.fov_deg, Some(45.0));
     assert_eq!(
-        s.shapes,
+        s.shapes.iter().collect::<Vec<_>>(),
         vec![
             sphere(d(1., -2., 3.25), 0.5),
             Shape::Triangle([d(0., 0., 0.), d(1., 0., 0.), d(0., 1., 0.)]),
             Shape::Quad([d(0., 0., 1.), d(2., 0., 1.), d(2., 3., 1.), d(0., 3., 1.)]),
         ]
     );
-    assert_eq!(s.lines, vec![2, 3, 4]);
+    assert_eq!(s.shapes.lines().collect::<Vec<_>>(), vec![2, 3, 4]);
     assert_eq!(s.counts(), (1, 1, 1));
     assert_eq!(ok(CAM).camera.fov_deg, None);
 }
@@ -83,11 +83,11 @@ fn ids_follow_file_order_across_types() {
                 camera eye 0 0 5 look 0 0 0 up 0 1 0\n\
                 triangle 0 0 0 1 0 0 0 1 0\n\
                 sphere 9 9 9 2\n");
-    assert_eq!(s.lines, vec![2, 3, 6, 7]);
-    assert!(matches!(s.shapes[0], Shape::Quad(_)));
-    assert!(matches!(s.shapes[1], Shape::Sphere { radius: 1.0, .. }));
-    assert!(matches!(s.shapes[2], Shape::Triangle(_)));
-    assert!(matches!(s.shapes[3], Shape::Sphere { radius: 2.0, .. }));
+    assert_eq!(s.shapes.lines().collect::<Vec<_>>(), vec![2, 3, 6, 7]);
+    assert!(matches!(s.shapes.get(0), Shape::Quad(_)));
+    assert!(matches!(s.shapes.get(1), Shape::Sphere { radius: 1.0, .. }));
+    assert!(matches!(s.shapes.get(2), Shape::Triangle(_)));
+    assert!(matches!(s.shapes.get(3), Shape::Sphere { radius: 2.0, .. }));
 }
 
 #[test]
@@ -101,10 +101,10 @@ fn bom_crlf_comments_tabs_and_blank_lines() {
                 sphere 0 0 0 1#x";
     let s = ok(text);
     assert_eq!(
-        s.shapes,
+        s.shapes.iter().collect::<Vec<_>>(),
         vec![sphere(d(1., 2., 3.), 4.), sphere(d(0., 0., 0.), 1.),]
     );
-    assert_eq!(s.lines, vec![4, 7]);
+    assert_eq!(s.shapes.lines().collect::<Vec<_>>(), vec![4, 7]);
     // Columns count characters after the BOM; tabs count as one.
     rejected("\u{feff}Camera eye", "scene.sc:1:1:", &["unknown keyword"]);
     rejected("\u{feff}\tsphere\t0 0 x 1\r\n", "scene.sc:1:13:", &["'x'"]);
@@ -118,7 +118,7 @@ fn camera_anywhere_and_zero_primitives() {
     assert_eq!(last.shapes.len(), 2);
     assert_eq!(last.camera.eye, d(0., 0., 5.));
     let only = ok(CAM);
-    assert!(only.shapes.is_empty() && only.lines.is_empty());
+    assert!(only.shapes.is_empty() && only.shapes.lines().next().is_none());
 }
 
 #[test]
@@ -180,9 +180,9 @@ fn accepted_numbers() {
     let s = ok(&with_cam(
         "sphere .5 5. +1 1E3\nsphere 1e-400 -0 -2.5e+1 1e-3\nsphere 007 -.25 1e2 1",
     ));
-    assert_eq!(s.shapes[0], sphere(d(0.5, 5., 1.), 1000.));
-    assert_eq!(s.shapes[1], sphere(d(0., 0., -25.), 1e-3));
-    assert_eq!(s.shapes[2], sphere(d(7., -0.25, 100.), 1.));
+    assert_eq!(s.shapes.get(0), sphere(d(0.5, 5., 1.), 1000.));
+    assert_eq!(s.shapes.get(1), sphere(d(0., 0., -25.), 1e-3));
+    assert_eq!(s.shapes.get(2), sphere(d(7., -0.25, 100.), 1.));
 }
 
 #[test]

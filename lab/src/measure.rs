@@ -109,7 +109,7 @@ pub fn measure(s: &LabScene, method: Method, oracle: &LabFrame, frame: &LabFrame
     let eye = s.camera.eye;
     let t64 = s.camera.tables::<f64>(1, 1);
     let shapes = &s.scene.shapes;
-    let shape = |id: i32| (id >= 0).then(|| &shapes[id as usize]);
+    let shape = |id: i32| (id >= 0).then(|| shapes.get(id as usize));
     let closed_ids: Vec<usize> = (0..shapes.len()).filter(|&i| s.closed[i]).collect();
     // every ray within `delta` of d hits the closed surface: d is not on its silhouette
     let interior = |d: V3<f64>| {
@@ -120,7 +120,7 @@ pub fn measure(s: &LabScene, method: Method, oracle: &LabFrame, frame: &LabFrame
             let p = (d + (s.camera.r * a.cos() + s.camera.u * a.sin()) * delta).normalize();
             closed_ids
                 .iter()
-                .any(|&i| hit_with_slack(&shapes[i], eye, p.to_array(), 0.0).is_some())
+                .any(|&i| hit_with_slack(&shapes.get(i), eye, p.to_array(), 0.0).is_some())
         })
     };
     let mut row = Row {
@@ -153,6 +153,7 @@ pub fn measure(s: &LabScene, method: Method, oracle: &LabFrame, frame: &LabFrame
         }
         let d = t64.dir_x1(i % w, i / w);
         let (sa, sb) = (shape(a), shape(b));
+        let (sa, sb) = (sa.as_ref(), sb.as_ref());
         let wide_a = sa.and_then(|x| hit_with_slack(x, eye, d, EDGE_BAND));
         let wide_b = sb.and_then(|x| hit_with_slack(x, eye, d, EDGE_BAND));
         let near_edge = |x: Option<&Shape>| {

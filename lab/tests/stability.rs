@@ -162,7 +162,8 @@ fn stable_far_sphere_depth_within_derived_bound() {
         if o.ids[i] < 0 || o.ids[i] != f.ids[i] {
             continue;
         }
-        let lanecast::scene::Shape::Sphere { center, radius } = s.scene.shapes[o.ids[i] as usize]
+        let lanecast::scene::Shape::Sphere { center, radius } =
+            s.scene.shapes.get(o.ids[i] as usize)
         else {
             unreachable!()
         };

@@ -101,19 +101,19 @@ struct Item {
 /// Eye-relative, padded boxes of every prepared primitive, from the scene's shapes.
 pub fn boxes<T>(
     p: &Prepared<T>,
-    shapes: &[crate::scene::Shape],
+    shapes: &crate::scene::Shapes,
     eye: DVec3,
 ) -> Vec<(Aabb, (u8, u32))> {
     use crate::scene::Shape;
     let mut out = Vec::with_capacity(p.spheres.len() + p.triangles.len() + p.quads.len());
     let mut add = |tag: u8, g_ids: &[i32]| {
         for (i, &id) in g_ids.iter().enumerate() {
-            let b = match &shapes[id as usize] {
+            let b = match shapes.get(id as usize) {
                 Shape::Sphere { center, radius } => {
-                    let c = *center - eye;
+                    let c = center - eye;
                     Aabb {
-                        min: c - DVec3::splat(*radius),
-                        max: c + DVec3::splat(*radius),
+                        min: c - DVec3::splat(radius),
+                        max: c + DVec3::splat(radius),
                     }
                 }
                 Shape::Triangle(v) => Aabb::of_points(&v.map(|p| p - eye)),

@@ -293,8 +293,7 @@ mod tests {
                 up: DVec3::Y,
                 fov_deg: None,
             },
-            lines: vec![1; shapes.len()],
-            shapes,
+            shapes: shapes.into(),
             warnings: Vec::new(),
         };
         let prepared = Prepared::new(&scene, DVec3::ZERO);

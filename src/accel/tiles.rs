@@ -138,8 +138,8 @@ impl Tiles {
         let (cols, rows) = (w.div_ceil(TILE_W), h.div_ceil(TILE_H));
         let eye = camera.eye;
         let footprint = |kind: u32, index: usize, id: f32| -> Entry {
-            let shape = &scene.shapes[id as usize];
-            let (rect, near) = match *shape {
+            let shape = scene.shapes.get(id as usize);
+            let (rect, near) = match shape {
                 crate::scene::Shape::Sphere { center, radius } => {
                     let oc = center - eye;
                     let dist = oc.length();
@@ -531,8 +531,7 @@ mod tests {
                 up: DVec3::Y,
                 fov_deg: Some(fov),
             },
-            lines: vec![1; shapes.len()],
-            shapes,
+            shapes: shapes.into(),
             warnings: Vec::new(),
         }
     }

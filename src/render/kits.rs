@@ -339,15 +339,15 @@ impl<S: SphereFamily, P: PolyFamily> Kit<S, P> {
             let id = id as f32;
             match shape {
                 Shape::Sphere { center, radius } => {
-                    kit.spheres.push((S::make(*center, *radius, eye), id))
+                    kit.spheres.push((S::make(center, radius, eye), id))
                 }
                 Shape::Triangle(v) => {
-                    if let Some(k) = P::tri(v, eye) {
+                    if let Some(k) = P::tri(&v, eye) {
                         kit.triangles.push((k, id))
                     }
                 }
                 Shape::Quad(v) => {
-                    if let Some(k) = P::quad(v, eye) {
+                    if let Some(k) = P::quad(&v, eye) {
                         kit.quads.push((k, id))
                     }
                 }

@@ -7,7 +7,7 @@ use super::parse::parse_bytes;
 use super::statement::{
     CAMERA_SYNTAX, Ctx, KEYWORDS, fast_shape, parse_camera, parse_shape, quote, tokenize,
 };
-use super::{CameraSpec, Scene, Shape};
+use super::{CameraSpec, Mesh, Scene, Shape, Shapes};
 use crate::error::{Error, Result};
 use crate::limits::MAX_LINE_BYTES;
 use glam::DVec3;
@@ -18,7 +18,7 @@ use std::path::Path;
 fn sequential_scene(text: &str, file: &Path, max_primitives: usize) -> Result<Scene> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut camera: Option<(CameraSpec, usize)> = None;
-    let (mut shapes, mut lines, mut toks) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut shapes, mut toks) = (Shapes::new(), Vec::new());
     for (i, raw) in text.split('\n').enumerate() {
         let line = raw.strip_suffix('\r').unwrap_or(raw);
         let ctx = Ctx {
@@ -60,8 +60,7 @@ fn sequential_scene(text: &str, file: &Path, max_primitives: usize) -> Result<Sc
                         format!("too many primitives: a scene holds at most {max_primitives}");
                     return Err(ctx.whole(msg));
                 }
-                shapes.push(parse_shape(&ctx, &toks)?);
-                lines.push(ctx.line);
+                shapes.push(parse_shape(&ctx, &toks)?, ctx.line);
             }
             other => {
                 let msg = format!(
@@ -83,7 +82,6 @@ fn sequential_scene(text: &str, file: &Path, max_primitives: usize) -> Result<Sc
         source,
         camera,
         shapes,
-        lines,
         warnings,
     })
 }
@@ -167,6 +165,11 @@ fn sequential_obj(bytes: &[u8], path: &Path, max: usize) -> Result<(Vec<[DVec3; 
     Ok((tris, degenerate))
 }
 
+/// A mesh as the list of its triangles, as the old reader gave them.
+fn triangles(r: Result<(Mesh, usize)>) -> Result<(Vec<[DVec3; 3]>, usize)> {
+    r.map(|(m, zero)| ((0..m.len()).map(|f| m.triangle(f)).collect(), zero))
+}
+
 /// A result as a comparable value: the scene or mesh, or the error's full message.
 fn show<T: std::fmt::Debug>(r: Result<T>) -> String {
     match r {
@@ -194,10 +197,10 @@ fn obj_agrees(text: &[u8], max: usize) -> String {
     let f = Path::new("m.obj");
     let want = show(sequential_obj(text, f, max));
     for chunk in (1..=text.len() + 1).chain([usize::MAX]) {
-        let got = show(parse_chunked(text, f, max, chunk));
+        let got = show(triangles(parse_chunked(text, f, max, chunk)));
         assert_eq!(got, want, "chunks of {chunk} bytes, text {text:?}");
     }
-    assert_eq!(show(parse_obj(text, f, max)), want);
+    assert_eq!(show(triangles(parse_obj(text, f, max))), want);
     want
 }
 
@@ -326,7 +329,8 @@ fn meshes_splice_in_at_their_line_in_any_chunking() {
     let sc = dir.join("s.sc");
     let text = format!("sphere 0 0 0 1\nmesh q.obj\n{CAM}mesh  q.obj \nsphere 0 0 0 2\n");
     let one = parse_bytes(text.as_bytes(), &sc, 100, usize::MAX).unwrap();
-    assert_eq!(one.lines, vec![1, 2, 2, 4, 4, 5]);
+    let lines: Vec<usize> = (0..one.shapes.len()).map(|i| one.shapes.line(i)).collect();
+    assert_eq!(lines, vec![1, 2, 2, 4, 4, 5]);
     assert_eq!(one.warnings.len(), 2, "{:?}", one.warnings);
     for chunk in 1..text.len() {
         assert_eq!(parse_bytes(text.as_bytes(), &sc, 100, chunk).unwrap(), one);
@@ -425,7 +429,7 @@ proptest! {
     fn random_meshes_agree(lines in prop::collection::vec(obj_line(), 0..40), max in 1usize..40, chunk in 1usize..200) {
         let text = lines.join("\n");
         let f = Path::new("m.obj");
-        prop_assert_eq!(show(parse_chunked(text.as_bytes(), f, max, chunk)), show(sequential_obj(text.as_bytes(), f, max)));
+        prop_assert_eq!(show(triangles(parse_chunked(text.as_bytes(), f, max, chunk))), show(sequential_obj(text.as_bytes(), f, max)));
     }
 
     /// The fast line reader takes a line only as the general reader would.

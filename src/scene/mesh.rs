@@ -18,11 +18,12 @@
 //! depends on the vertices before it, in earlier chunks too, so once every chunk is read the
 //! vertex and triangle counts are prefix-summed and every chunk is checked in parallel against
 //! them; the first error in file order wins, worded and numbered as reading line by line would.
-//! Then the vertices are joined into one list and the triangles built in parallel, in file
-//! order. A shared budget bounds what chunks hold to the triangle limit (see `parse.rs`).
+//! Then the vertices are joined into one list and the faces' vertex indices written in
+//! parallel, in file order: the mesh stays indexed ([`Mesh`]), about 24 bytes a triangle. A shared budget bounds what chunks hold to the triangle limit (see `parse.rs`).
 
 use super::chunks::{self, Budget, Chunk};
 use super::obj::{self, Base, Halt, ObjChunk, Stop};
+use super::shapes::Mesh;
 use crate::error::{Error, Result};
 use crate::limits::MAX_SCENE_BYTES;
 use glam::DVec3;
@@ -31,7 +32,7 @@ use std::path::Path;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// The triangles of the OBJ file at `path`, in file order, and how many are degenerate.
-pub fn load_obj(path: &Path, max_triangles: usize) -> Result<(Vec<[DVec3; 3]>, usize)> {
+pub fn load_obj(path: &Path, max_triangles: usize) -> Result<(Mesh, usize)> {
     let meta = std::fs::metadata(path).map_err(|e| Error::io(path, "read mesh", e))?;
     if meta.len() > MAX_SCENE_BYTES {
         return Err(Error::InputFile {
@@ -48,11 +49,7 @@ pub fn load_obj(path: &Path, max_triangles: usize) -> Result<(Vec<[DVec3; 3]>, u
 }
 
 /// [`load_obj`] on bytes already read; `path` names them in messages.
-pub fn parse_obj(
-    bytes: &[u8],
-    path: &Path,
-    max_triangles: usize,
-) -> Result<(Vec<[DVec3; 3]>, usize)> {
+pub fn parse_obj(bytes: &[u8], path: &Path, max_triangles: usize) -> Result<(Mesh, usize)> {
     parse_chunked(bytes, path, max_triangles, chunks::chunk_bytes(bytes.len()))
 }
 
@@ -62,7 +59,7 @@ pub(super) fn parse_chunked(
     path: &Path,
     max_triangles: usize,
     chunk_bytes: usize,
-) -> Result<(Vec<[DVec3; 3]>, usize)> {
+) -> Result<(Mesh, usize)> {
     let parts = chunks::split(bytes, chunk_bytes);
     let read =
         |c: &Chunk, budget: &Budget| obj::read(&bytes[c.range.clone()], c.first_line, path, budget);
@@ -102,7 +99,7 @@ fn finish(
     mut chunks: Vec<ObjChunk>,
     path: &Path,
     max: usize,
-) -> std::result::Result<(Vec<[DVec3; 3]>, usize), Halt> {
+) -> std::result::Result<(Mesh, usize), Halt> {
     // nothing after the first chunk that stopped matters
     if let Some(k) = chunks.iter().position(|c| c.stop.is_some()) {
         chunks.truncate(k + 1);
@@ -123,25 +120,32 @@ fn finish(
         .collect::<std::result::Result<(), Halt>>()?;
     // past the checks, every index is in range and there are at most `max` triangles
     let lens: Vec<usize> = chunks.iter().map(|c| c.verts.len()).collect();
+    // the file is at most MAX_SCENE_BYTES (1 GiB), so vertex indices fit in 32 bits
+    assert!(
+        verts <= u32::MAX as usize,
+        "vertex count under the file size limit"
+    );
     let verts: Vec<DVec3> = chunks::gather(&lens, |p, j| chunks[p].verts[j]).collect();
     if chunks.iter().all(ObjChunk::triangles_only) {
         let zero = AtomicUsize::new(0);
         let lens: Vec<usize> = chunks.iter().map(|c| c.tris).collect();
-        let tris = chunks::gather(&lens, |p, j| {
-            let t = obj::triangle(&chunks[p], j, bases[p], &verts);
-            if obj::degenerate(&t) {
+        let faces = chunks::gather(&lens, |p, j| {
+            let t = obj::triangle(&chunks[p], j, bases[p]);
+            if obj::degenerate(&t.map(|i| verts[i as usize])) {
                 zero.fetch_add(1, Ordering::Relaxed);
             }
             t
         });
-        let tris = tris.collect();
-        return Ok((tris, zero.into_inner()));
+        let faces = faces.collect();
+        drop(chunks);
+        let mesh = Mesh {
+            vertices: verts,
+            faces,
+        };
+        return Ok((mesh, zero.into_inner()));
     }
     // polygons: chunk j's triangles fill slice j of a zeroed list
-    let mut out: Vec<[DVec3; 3]> = (0..tris)
-        .into_par_iter()
-        .map(|_| [DVec3::ZERO; 3])
-        .collect();
+    let mut out: Vec<[u32; 3]> = (0..tris).into_par_iter().map(|_| [0; 3]).collect();
     let mut slices = Vec::with_capacity(chunks.len());
     let mut rest = out.as_mut_slice();
     for c in &chunks {
@@ -152,7 +156,11 @@ fn finish(
     let zero: usize = (chunks.par_iter().zip(&bases).zip(slices))
         .map(|((c, &base), slice)| obj::write(c, base, &verts, slice))
         .sum();
-    Ok((out, zero))
+    let mesh = Mesh {
+        vertices: verts,
+        faces: out,
+    };
+    Ok((mesh, zero))
 }
 
 #[cfg(test)]
@@ -160,7 +168,8 @@ mod tests {
     use super::*;
 
     fn parse(text: &str) -> Result<(Vec<[DVec3; 3]>, usize)> {
-        parse_obj(text.as_bytes(), Path::new("m.obj"), 1000)
+        let (mesh, zero) = parse_obj(text.as_bytes(), Path::new("m.obj"), 1000)?;
+        Ok(((0..mesh.len()).map(|f| mesh.triangle(f)).collect(), zero))
     }
 
     #[test]

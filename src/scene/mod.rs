@@ -12,10 +12,12 @@ mod number;
 mod obj;
 pub mod parse;
 mod scene_chunk;
+mod shapes;
 mod statement;
 pub mod validate;
 
 use glam::DVec3;
+pub use shapes::{Iter, Mesh, Shapes};
 use std::path::PathBuf;
 
 use crate::error::Result;
@@ -83,11 +85,10 @@ pub struct Scene {
     pub source: PathBuf,
     /// The scene's `camera` statement.
     pub camera: CameraSpec,
-    /// Every primitive in file order (meshes expanded in place); the index is the id.
-    pub shapes: Vec<Shape>,
-    /// 1-based source line of each shape, for messages (same length as `shapes`): a mesh's
-    /// triangles all carry the line of their `mesh` statement.
-    pub lines: Vec<usize>,
+    /// Every primitive in file order, a mesh's triangles at its place; the index is the id.
+    /// Each with its 1-based source line for messages (`Shapes::line`): a mesh's triangles all
+    /// carry the line of their `mesh` statement. Meshes are kept indexed (see [`Shapes`]).
+    pub shapes: Shapes,
     /// Things worth telling the user that do not stop the render (e.g. degenerate mesh
     /// triangles), each a full message naming file and line.
     pub warnings: Vec<String>,
@@ -97,13 +98,14 @@ impl Scene {
     /// How many primitives of each type: (spheres, triangles, quads).
     pub fn counts(&self) -> (usize, usize, usize) {
         let mut n = (0, 0, 0);
-        for s in &self.shapes {
+        for s in self.shapes.loose() {
             match s {
                 Shape::Sphere { .. } => n.0 += 1,
                 Shape::Triangle(_) => n.1 += 1,
                 Shape::Quad(_) => n.2 += 1,
             }
         }
+        n.1 += self.shapes.meshes().map(|(m, _)| m.len()).sum::<usize>();
         n
     }
 }

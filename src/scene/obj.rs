@@ -353,18 +353,19 @@ pub fn degenerate(t: &[DVec3; 3]) -> bool {
     (t[1] - t[0]).cross(t[2] - t[0]).length_squared() == 0.0
 }
 
-/// A checked chunk's faces, fan-triangulated into `out` (its slice of the final list), and how
-/// many of those triangles are degenerate. `verts`: the vertices of the file.
-pub fn write(c: &ObjChunk, base: Base, verts: &[DVec3], out: &mut [[DVec3; 3]]) -> usize {
+/// A checked chunk's faces, fan-triangulated into `out` (its slice of the final face list, as
+/// vertex indices), and how many of those triangles are degenerate. `verts`: the vertices of
+/// the file.
+pub fn write(c: &ObjChunk, base: Base, verts: &[DVec3], out: &mut [[u32; 3]]) -> usize {
     let (mut start, mut n, mut zero) = (0, 0, 0);
     for f in &c.faces {
         let at = Corners::new(c, f, start, base.verts);
         start = f.end as usize;
-        let v = |k: usize| verts[at.index(k).expect("indices are checked")];
+        let v = |k: usize| at.index(k).expect("indices are checked") as u32;
         let (a, mut b) = (v(0), v(1));
         for k in 2..at.len {
             let t = [a, b, v(k)];
-            zero += usize::from(degenerate(&t));
+            zero += usize::from(degenerate(&t.map(|i| verts[i as usize])));
             out[n] = t;
             n += 1;
             b = t[2];
@@ -373,10 +374,10 @@ pub fn write(c: &ObjChunk, base: Base, verts: &[DVec3], out: &mut [[DVec3; 3]]) 
     zero
 }
 
-/// Triangle `j` of a checked chunk whose faces are all triangles.
-pub fn triangle(c: &ObjChunk, j: usize, base: Base, verts: &[DVec3]) -> [DVec3; 3] {
+/// Triangle `j` of a checked chunk whose faces are all triangles, as vertex indices.
+pub fn triangle(c: &ObjChunk, j: usize, base: Base) -> [u32; 3] {
     let at = Corners::new(c, &c.faces[j], 3 * j, base.verts);
-    [0, 1, 2].map(|k| verts[at.index(k).expect("indices are checked")])
+    [0, 1, 2].map(|k| at.index(k).expect("indices are checked") as u32)
 }
 
 /// A face's indices, resolved against the vertices before its line.

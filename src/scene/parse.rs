@@ -39,8 +39,9 @@
 
 use super::chunks::{self, Budget};
 use super::scene_chunk::{ChunkOut, Event, StopKind, parse_chunk, second_camera};
+use super::shapes::{Mesh, Part, Shapes};
 use super::statement::CAMERA_SYNTAX;
-use super::{CameraSpec, Scene, Shape, mesh};
+use super::{CameraSpec, Scene, mesh};
 use crate::error::{Error, Result};
 use crate::limits::{MAX_PRIMITIVES, MAX_SCENE_BYTES};
 use crate::words::count;
@@ -225,20 +226,11 @@ impl From<Error> for Halt {
     }
 }
 
-/// A run of the final shape list: shapes `range` of chunk `chunk`, or a mesh's triangles (all
-/// on its line).
+/// A run of the final shape list: shapes `range` of chunk `chunk`, or a mesh (all on its
+/// line).
 enum Piece {
     Shapes { chunk: usize, range: Range<usize> },
-    Mesh(Vec<[DVec3; 3]>, usize),
-}
-
-impl Piece {
-    fn len(&self) -> usize {
-        match self {
-            Piece::Shapes { range, .. } => range.len(),
-            Piece::Mesh(t, _) => t.len(),
-        }
-    }
+    Mesh(Mesh, usize),
 }
 
 /// The chunks' results in file order: limit, cameras, meshes, the first error; then the scene.
@@ -286,10 +278,10 @@ fn join(
                 Event::Mesh { line, at, path } => {
                     place(at, &mut total, &mut pieces)?;
                     let path = file.parent().map_or_else(|| path.into(), |d| d.join(path));
-                    let tris = load_mesh(file, line, &path, max - total, &mut warnings)?;
+                    let mesh = load_mesh(file, line, &path, max - total, &mut warnings)?;
                     meshes.push(path);
-                    total += tris.len();
-                    pieces.push(Piece::Mesh(tris, line));
+                    total += mesh.len();
+                    pieces.push(Piece::Mesh(mesh, line));
                 }
             }
         }
@@ -319,22 +311,28 @@ fn join(
         }
         .into());
     };
-    pieces.retain(|p| p.len() > 0);
-    let lens: Vec<usize> = pieces.iter().map(Piece::len).collect();
+    // the loose shapes, copied in parallel in file order; the meshes stay as read
+    let loose: Vec<(usize, Range<usize>)> = (pieces.iter())
+        .filter_map(|p| match p {
+            Piece::Shapes { chunk, range } => Some((*chunk, range.clone())),
+            Piece::Mesh(..) => None,
+        })
+        .collect();
+    let lens: Vec<usize> = loose.iter().map(|(_, r)| r.len()).collect();
     let (mut shapes, mut lines) = (Vec::new(), Vec::new());
-    chunks::gather(&lens, |p, j| match &pieces[p] {
-        Piece::Shapes { chunk, range } => {
-            let out = &outs[*chunk];
-            (out.shape(range.start + j), out.line(range.start + j))
-        }
-        Piece::Mesh(t, line) => (Shape::Triangle(t[j]), *line),
+    chunks::gather(&lens, |p, j| {
+        let (out, at) = (&outs[loose[p].0], loose[p].1.start + j);
+        (out.shape(at), out.line(at) as u32)
     })
     .unzip_into_vecs(&mut shapes, &mut lines);
+    let parts = pieces.into_iter().map(|p| match p {
+        Piece::Shapes { range, .. } => Part::Loose(range.len()),
+        Piece::Mesh(mesh, line) => Part::Mesh(mesh, line),
+    });
     Ok(Scene {
         source: file.to_path_buf(),
         camera,
-        shapes,
-        lines,
+        shapes: Shapes::assemble(shapes, lines, parts),
         warnings,
     })
 }
@@ -347,8 +345,8 @@ const FRAMING_HALF_ANGLE_DEG: f64 = 15.0;
 /// order, seen by [`framing_camera`]. Shapes carry line 0 (no scene line); range errors name the
 /// face instead (`validate::f32_range`).
 fn load_obj_scene(path: &Path) -> Result<Scene> {
-    let (tris, degenerate) = mesh::load_obj(path, MAX_PRIMITIVES)?;
-    let camera = framing_camera(&tris).ok_or_else(|| Error::InputFile {
+    let (mesh, degenerate) = mesh::load_obj(path, MAX_PRIMITIVES)?;
+    let camera = framing_camera(&mesh).ok_or_else(|| Error::InputFile {
         file: path.to_path_buf(),
         msg: "no faces with extent to frame; a mesh to render alone needs at least one".into(),
     })?;
@@ -360,12 +358,12 @@ fn load_obj_scene(path: &Path) -> Result<Scene> {
             count(degenerate, "degenerate triangle", "degenerate triangles")
         ));
     }
-    let lines = vec![0; tris.len()];
+    let mut shapes = Shapes::new();
+    shapes.push_mesh(mesh, 0);
     Ok(Scene {
         source: path.to_path_buf(),
         camera,
-        shapes: tris.into_iter().map(Shape::Triangle).collect(),
-        lines,
+        shapes,
         warnings,
     })
 }
@@ -375,12 +373,13 @@ fn load_obj_scene(path: &Path) -> Result<Scene> {
 /// `R / sin(15 deg)` away (`R`: half the box's diagonal), so the box's bounding sphere fills at
 /// most 15 degrees either side of the view axis: whole in view with the default field of view
 /// (README "Rendering an OBJ directly"). `None` when the box is a point (or there are no faces).
-pub fn framing_camera(tris: &[[DVec3; 3]]) -> Option<CameraSpec> {
+pub fn framing_camera(mesh: &Mesh) -> Option<CameraSpec> {
     let mut lo = DVec3::splat(f64::INFINITY);
     let mut hi = DVec3::splat(f64::NEG_INFINITY);
-    for v in tris.iter().flatten() {
-        lo = lo.min(*v);
-        hi = hi.max(*v);
+    for &i in mesh.faces.iter().flatten() {
+        let v = mesh.vertices[i as usize];
+        lo = lo.min(v);
+        hi = hi.max(v);
     }
     let radius = (hi - lo).length() / 2.0;
     if !(radius > 0.0 && radius.is_finite()) {
@@ -403,10 +402,10 @@ fn load_mesh(
     path: &Path,
     room: usize,
     warnings: &mut Vec<String>,
-) -> Result<Vec<[DVec3; 3]>> {
+) -> Result<Mesh> {
     // A mesh that cannot be read is an I/O error like a scene that cannot be read (exit 1),
     // reported at the line naming it.
-    let (tris, degenerate) = mesh::load_obj(path, room).map_err(|e| match e {
+    let (mesh, degenerate) = mesh::load_obj(path, room).map_err(|e| match e {
         Error::Io { source, .. } => Error::IoAt {
             file: file.to_path_buf(),
             line,
@@ -424,7 +423,7 @@ fn load_mesh(
             count(degenerate, "degenerate triangle", "degenerate triangles")
         ));
     }
-    Ok(tris)
+    Ok(mesh)
 }
 
 #[cfg(test)]

@@ -259,18 +259,19 @@ pub fn f32_range(scene: &Scene) -> Result<(), Error> {
     let eye = scene.camera.eye;
     let first = scene
         .shapes
-        .par_iter()
-        .enumerate()
-        .map(|(i, shape)| (i, shape_f32(shape, eye)))
-        .find_first(|(_, r)| r.is_err());
+        .par_chunks(1 << 12)
+        .find_map_first(|(at, shapes)| {
+            (shapes.enumerate())
+                .find_map(|(j, shape)| shape_f32(&shape, eye).err().map(|m| (at + j, m)))
+        });
     match first {
         // line 0: a mesh rendered alone, whose shapes are its faces
-        Some((i, Err(msg))) if scene.lines[i] == 0 => Err(Error::InputFile {
+        Some((i, msg)) if scene.shapes.line(i) == 0 => Err(Error::InputFile {
             file: scene.source.clone(),
             msg: format!("face {}: {msg}", i + 1),
         }),
-        Some((i, Err(msg))) => Err(Error::input(&scene.source, scene.lines[i], 0, msg)),
-        _ => Ok(()),
+        Some((i, msg)) => Err(Error::input(&scene.source, scene.shapes.line(i), 0, msg)),
+        None => Ok(()),
     }
 }
 

@@ -227,18 +227,18 @@ pub fn build_scene(name: &str, camera: CameraSpec, shapes: &[Shape]) -> Scene {
 /// The scene and its camera moved by `by` (both, so every eye-relative quantity is the same up
 /// to the rounding of the moved coordinates).
 pub fn translated(scene: &Scene, by: DVec3) -> Scene {
-    let shapes = scene
-        .shapes
-        .iter()
-        .map(|s| match s {
+    let mut shapes = lanecast::scene::Shapes::new();
+    for (i, s) in scene.shapes.iter().enumerate() {
+        let moved = match s {
             Shape::Sphere { center, radius } => Shape::Sphere {
-                center: *center + by,
-                radius: *radius,
+                center: center + by,
+                radius,
             },
             Shape::Triangle(v) => Shape::Triangle(v.map(|p| p + by)),
             Shape::Quad(v) => Shape::Quad(v.map(|p| p + by)),
-        })
-        .collect();
+        };
+        shapes.push(moved, scene.shapes.line(i));
+    }
     let mut camera = scene.camera;
     camera.eye += by;
     camera.look += by;
@@ -246,7 +246,6 @@ pub fn translated(scene: &Scene, by: DVec3) -> Scene {
         source: scene.source.clone(),
         camera,
         shapes,
-        lines: scene.lines.clone(),
         warnings: Vec::new(),
     }
 }

@@ -1,0 +1,421 @@
+//! The scene's primitives in id order, kept in the form that costs least.
+//!
+//! Primitives written on their own lines (`sphere`, `triangle`, `quad`) are kept as [`Shape`]
+//! values with their line. A mesh's triangles are kept indexed, as the OBJ file wrote them: its
+//! f64 vertices once and three `u32` vertex indices per face ([`Mesh`]), all on the line of its
+//! `mesh` statement. A closed scan has about half as many vertices as faces, so a mesh triangle
+//! costs about 24 bytes here against 104 for a `Shape` (sized for the quad's four vertices) and
+//! 8 for its line.
+//!
+//! Ids run over the runs in order: each run is a stretch of consecutive ids, either loose
+//! shapes (consecutive in `loose`) or one mesh's faces. [`Shapes::get`] finds a run by binary
+//! search (usually one or two runs), and [`Iter`] walks them without searching.
+
+use super::Shape;
+use glam::DVec3;
+use rayon::prelude::*;
+use std::ops::Range;
+
+/// A mesh's triangles, indexed: the faces in file order (fan-triangulated), each three indices
+/// into `vertices`. Degenerate faces are kept, so the ids of the others do not shift.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Mesh {
+    /// Every vertex of the OBJ file, in file order.
+    pub vertices: Vec<DVec3>,
+    /// Each face's three vertex indices (0-based, in range).
+    pub faces: Vec<[u32; 3]>,
+}
+
+impl Mesh {
+    /// Face `f`'s vertices.
+    #[inline]
+    pub fn triangle(&self, f: usize) -> [DVec3; 3] {
+        self.faces[f].map(|v| self.vertices[v as usize])
+    }
+
+    /// How many faces.
+    pub fn len(&self) -> usize {
+        self.faces.len()
+    }
+
+    /// True when there are no faces.
+    pub fn is_empty(&self) -> bool {
+        self.faces.is_empty()
+    }
+}
+
+/// Where a run's shapes are.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Src {
+    /// Loose shapes from this index of `loose` on.
+    Loose(usize),
+    /// The faces of mesh `k`.
+    Mesh(usize),
+}
+
+/// A stretch of consecutive ids starting at `first`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Run {
+    first: usize,
+    src: Src,
+}
+
+/// One piece of [`Shapes::assemble`]'s input, in id order.
+pub(crate) enum Part {
+    /// The next `n` loose shapes.
+    Loose(usize),
+    /// A mesh and the line of its `mesh` statement.
+    Mesh(Mesh, usize),
+}
+
+/// Every primitive of a scene, in id order (see the module comment).
+#[derive(Clone, Default)]
+pub struct Shapes {
+    loose: Vec<Shape>,
+    loose_lines: Vec<u32>,
+    meshes: Vec<(Mesh, u32)>,
+    runs: Vec<Run>,
+    len: usize,
+}
+
+/// Lines are at most `MAX_SCENE_BYTES` (1 GiB) apart from the start, so they fit in 32 bits.
+fn line32(line: usize) -> u32 {
+    u32::try_from(line).expect("a line number of a scene under the size limit")
+}
+
+impl Shapes {
+    /// An empty list.
+    pub fn new() -> Shapes {
+        Shapes::default()
+    }
+
+    /// Appends a loose shape written on `line` (0: no scene line, e.g. an OBJ rendered alone).
+    pub fn push(&mut self, shape: Shape, line: usize) {
+        if !matches!(
+            self.runs.last(),
+            Some(Run {
+                src: Src::Loose(_),
+                ..
+            })
+        ) {
+            self.runs.push(Run {
+                first: self.len,
+                src: Src::Loose(self.loose.len()),
+            });
+        }
+        self.loose.push(shape);
+        self.loose_lines.push(line32(line));
+        self.len += 1;
+    }
+
+    /// Appends a mesh's faces, all on `line`.
+    pub fn push_mesh(&mut self, mesh: Mesh, line: usize) {
+        if mesh.is_empty() {
+            return;
+        }
+        self.runs.push(Run {
+            first: self.len,
+            src: Src::Mesh(self.meshes.len()),
+        });
+        self.len += mesh.len();
+        self.meshes.push((mesh, line32(line)));
+    }
+
+    /// The list made of `loose` (with their lines) and meshes, in the order `parts` gives.
+    pub(crate) fn assemble(
+        loose: Vec<Shape>,
+        loose_lines: Vec<u32>,
+        parts: impl IntoIterator<Item = Part>,
+    ) -> Shapes {
+        debug_assert_eq!(loose.len(), loose_lines.len());
+        let mut s = Shapes {
+            loose,
+            loose_lines,
+            ..Shapes::default()
+        };
+        let mut taken = 0;
+        for part in parts {
+            match part {
+                Part::Loose(0) => {}
+                Part::Loose(n) => {
+                    if !matches!(
+                        s.runs.last(),
+                        Some(Run {
+                            src: Src::Loose(_),
+                            ..
+                        })
+                    ) {
+                        s.runs.push(Run {
+                            first: s.len,
+                            src: Src::Loose(taken),
+                        });
+                    }
+                    taken += n;
+                    s.len += n;
+                }
+                Part::Mesh(mesh, line) => s.push_mesh(mesh, line),
+            }
+        }
+        assert_eq!(taken, s.loose.len(), "parts cover every loose shape");
+        s
+    }
+
+    /// How many primitives.
+    #[inline]
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// True when there are none.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// The index in `runs` of the run holding `id`.
+    #[inline]
+    fn run_of(&self, id: usize) -> usize {
+        if self.runs.len() == 1 {
+            0
+        } else {
+            self.runs.partition_point(|r| r.first <= id) - 1
+        }
+    }
+
+    /// The id after run `r`'s last.
+    #[inline]
+    fn run_end(&self, r: usize) -> usize {
+        self.runs.get(r + 1).map_or(self.len, |n| n.first)
+    }
+
+    #[inline]
+    fn in_run(&self, r: usize, id: usize) -> Shape {
+        let run = self.runs[r];
+        match run.src {
+            Src::Loose(at) => self.loose[at + id - run.first],
+            Src::Mesh(k) => Shape::Triangle(self.meshes[k].0.triangle(id - run.first)),
+        }
+    }
+
+    /// Primitive `id`. Panics when `id >= len()`.
+    #[inline]
+    pub fn get(&self, id: usize) -> Shape {
+        assert!(id < self.len, "shape id {id} of {}", self.len);
+        self.in_run(self.run_of(id), id)
+    }
+
+    /// The 1-based scene line primitive `id` was written on (a mesh's faces: its `mesh` line),
+    /// 0 when it has none (an OBJ file rendered alone).
+    pub fn line(&self, id: usize) -> usize {
+        assert!(id < self.len, "shape id {id} of {}", self.len);
+        let run = self.runs[self.run_of(id)];
+        match run.src {
+            Src::Loose(at) => self.loose_lines[at + id - run.first] as usize,
+            Src::Mesh(k) => self.meshes[k].1 as usize,
+        }
+    }
+
+    /// Every primitive's line ([`Shapes::line`]), in id order.
+    pub fn lines(&self) -> impl Iterator<Item = usize> + '_ {
+        (self.runs.iter().enumerate()).flat_map(move |(r, run)| {
+            let n = self.run_end(r) - run.first;
+            (0..n).map(move |j| match run.src {
+                Src::Loose(at) => self.loose_lines[at + j] as usize,
+                Src::Mesh(k) => self.meshes[k].1 as usize,
+            })
+        })
+    }
+
+    /// Every primitive, in id order.
+    pub fn iter(&self) -> Iter<'_> {
+        self.range(0..self.len)
+    }
+
+    /// Primitives `ids`, in order.
+    pub fn range(&self, ids: Range<usize>) -> Iter<'_> {
+        assert!(ids.start <= ids.end && ids.end <= self.len);
+        let run = if ids.is_empty() {
+            0
+        } else {
+            self.run_of(ids.start)
+        };
+        Iter {
+            shapes: self,
+            id: ids.start,
+            end: ids.end,
+            run,
+            run_end: if ids.is_empty() { 0 } else { self.run_end(run) },
+        }
+    }
+
+    /// The primitives in consecutive pieces of `chunk` ids, in parallel: each piece's first id
+    /// and its primitives.
+    pub fn par_chunks(
+        &self,
+        chunk: usize,
+    ) -> impl IndexedParallelIterator<Item = (usize, Iter<'_>)> + '_ {
+        let chunk = chunk.max(1);
+        (0..self.len.div_ceil(chunk)).into_par_iter().map(move |c| {
+            let first = c * chunk;
+            (first, self.range(first..(first + chunk).min(self.len)))
+        })
+    }
+
+    /// The loose shapes (those not from a mesh), in id order.
+    pub fn loose(&self) -> &[Shape] {
+        &self.loose
+    }
+
+    /// The meshes, each with its `mesh` line, in file order.
+    pub fn meshes(&self) -> impl Iterator<Item = (&Mesh, usize)> {
+        self.meshes.iter().map(|(m, l)| (m, *l as usize))
+    }
+}
+
+impl PartialEq for Shapes {
+    /// The same primitives on the same lines, however they are stored.
+    fn eq(&self, other: &Shapes) -> bool {
+        self.len == other.len && self.iter().eq(other.iter()) && self.lines().eq(other.lines())
+    }
+}
+
+impl std::fmt::Debug for Shapes {
+    /// The primitives and their lines, however they are stored (as [`PartialEq`] compares).
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let lines: Vec<usize> = self.lines().collect();
+        f.debug_struct("Shapes")
+            .field("shapes", &self.iter().collect::<Vec<_>>())
+            .field("lines", &lines)
+            .finish()
+    }
+}
+
+impl FromIterator<Shape> for Shapes {
+    /// Loose shapes with no scene line (0), as a Rust caller builds a scene.
+    fn from_iter<I: IntoIterator<Item = Shape>>(iter: I) -> Shapes {
+        let mut s = Shapes::new();
+        for shape in iter {
+            s.push(shape, 0);
+        }
+        s
+    }
+}
+
+impl From<Vec<Shape>> for Shapes {
+    fn from(v: Vec<Shape>) -> Shapes {
+        v.into_iter().collect()
+    }
+}
+
+/// The primitives of a range of ids, in order ([`Shapes::iter`], [`Shapes::range`]).
+#[derive(Debug, Clone)]
+pub struct Iter<'a> {
+    shapes: &'a Shapes,
+    id: usize,
+    end: usize,
+    run: usize,
+    run_end: usize,
+}
+
+impl Iterator for Iter<'_> {
+    type Item = Shape;
+
+    #[inline]
+    fn next(&mut self) -> Option<Shape> {
+        if self.id >= self.end {
+            return None;
+        }
+        while self.id >= self.run_end {
+            self.run += 1;
+            self.run_end = self.shapes.run_end(self.run);
+        }
+        let s = self.shapes.in_run(self.run, self.id);
+        self.id += 1;
+        Some(s)
+    }
+
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        let n = self.end - self.id;
+        (n, Some(n))
+    }
+}
+
+impl ExactSizeIterator for Iter<'_> {}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sphere(r: f64) -> Shape {
+        Shape::Sphere {
+            center: DVec3::ZERO,
+            radius: r,
+        }
+    }
+
+    fn mesh(n: u32) -> Mesh {
+        Mesh {
+            vertices: (0..n + 2).map(|i| DVec3::new(i as f64, 0.0, 1.0)).collect(),
+            faces: (0..n).map(|i| [i, i + 1, i + 2]).collect(),
+        }
+    }
+
+    #[test]
+    fn ids_run_over_loose_shapes_and_meshes_in_order() {
+        let mut s = Shapes::new();
+        s.push(sphere(1.0), 3);
+        s.push_mesh(mesh(3), 4);
+        s.push_mesh(Mesh::default(), 5); // no faces: no ids
+        s.push(sphere(2.0), 6);
+        s.push(sphere(3.0), 7);
+        s.push_mesh(mesh(2), 8);
+        assert_eq!(s.len(), 8);
+        let lines: Vec<usize> = (0..8).map(|i| s.line(i)).collect();
+        assert_eq!(lines, [3, 4, 4, 4, 6, 7, 8, 8]);
+        assert_eq!(s.lines().collect::<Vec<_>>(), lines);
+        assert_eq!(s.get(0), sphere(1.0));
+        assert_eq!(s.get(5), sphere(3.0));
+        let m = mesh(3);
+        assert_eq!(s.get(2), Shape::Triangle(m.triangle(1)));
+        assert_eq!(
+            m.triangle(1),
+            [1.0, 2.0, 3.0].map(|x| DVec3::new(x, 0.0, 1.0))
+        );
+        let all: Vec<Shape> = s.iter().collect();
+        assert_eq!(all, (0..8).map(|i| s.get(i)).collect::<Vec<_>>());
+        for a in 0..=8 {
+            for b in a..=8 {
+                let r: Vec<Shape> = s.range(a..b).collect();
+                assert_eq!(r, all[a..b], "{a}..{b}");
+            }
+        }
+        let chunks: Vec<(usize, Vec<Shape>)> =
+            s.par_chunks(3).map(|(f, it)| (f, it.collect())).collect();
+        assert_eq!(chunks.len(), 3);
+        assert_eq!(chunks[2], (6, all[6..].to_vec()));
+    }
+
+    #[test]
+    fn assemble_matches_pushing_one_by_one() {
+        let loose = vec![sphere(1.0), sphere(2.0), sphere(3.0)];
+        let built = Shapes::assemble(
+            loose.clone(),
+            vec![1, 2, 9],
+            [
+                Part::Loose(2),
+                Part::Mesh(mesh(2), 5),
+                Part::Loose(0),
+                Part::Loose(1),
+            ],
+        );
+        let mut pushed = Shapes::new();
+        pushed.push(loose[0], 1);
+        pushed.push(loose[1], 2);
+        pushed.push_mesh(mesh(2), 5);
+        pushed.push(loose[2], 9);
+        assert_eq!(built, pushed);
+        assert_eq!(built.len(), 5);
+        assert_eq!(built.line(4), 9);
+        let other: Shapes = loose.into_iter().collect();
+        assert_ne!(built, other);
+    }
+}
