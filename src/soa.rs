@@ -251,6 +251,21 @@ impl Spheres {
         self.id.push(id);
     }
 
+    /// Room for exactly `n` more spheres in every column.
+    fn reserve(&mut self, n: usize) {
+        for col in [
+            &mut self.ocx,
+            &mut self.ocy,
+            &mut self.ocz,
+            &mut self.r2,
+            &mut self.c,
+        ] {
+            col.reserve_exact(n);
+        }
+        self.inside.reserve_exact(n);
+        self.id.reserve_exact(n);
+    }
+
     /// Appends every sphere of `other`.
     fn append(&mut self, o: &Spheres) {
         self.ocx.extend_from_slice(&o.ocx);
@@ -331,6 +346,14 @@ impl<const N: usize> Polygons<N> {
         self.id.push(id);
     }
 
+    /// Room for exactly `n` more polygons in every column.
+    fn reserve(&mut self, n: usize) {
+        let cols = self.n.iter_mut().flatten().chain(&mut self.nrm);
+        for col in cols.chain([&mut self.p, &mut self.id]) {
+            col.reserve_exact(n);
+        }
+    }
+
     /// Appends every polygon of `other`.
     fn append(&mut self, other: &Polygons<N>) {
         for (col, o) in self.n.iter_mut().zip(&other.n) {
@@ -370,39 +393,55 @@ impl Packed {
     /// [`Packed::new`], so the columns are identical), then joined in file order.
     pub fn from_scene(scene: &Scene, eye: DVec3) -> Packed {
         const CHUNK: usize = 1 << 14;
-        let parts: Vec<Packed> = scene
-            .shapes
-            .par_chunks(CHUNK)
-            .map(|(first, shapes)| {
-                let mut part = Packed::default();
-                for (j, shape) in shapes.enumerate() {
-                    let id = (first + j) as f32;
-                    match shape {
-                        Shape::Sphere { center, radius } => part
-                            .spheres
-                            .push(&SphereK::new(center, radius, eye).cast(), id),
-                        Shape::Triangle(v) => {
-                            if let Some(k) = TriangleK::triangle(&v, eye) {
-                                part.triangles.push(&k.cast(), id)
-                            }
-                        }
-                        Shape::Quad(v) => {
-                            if let Some(k) = QuadK::quad(&v, eye) {
-                                part.quads.push(&k.cast(), id)
-                            }
-                        }
-                    }
-                }
-                part
-            })
-            .collect();
+        // Batches of a few chunks per thread: the parts of one batch are joined (and freed)
+        // before the next is prepared, so the stores exist about once at any time, not twice.
+        // The columns are allocated once, for every shape of their type (edge-on polygons,
+        // left out, are rare), so they never move or grow.
+        let batch_len = CHUNK * (4 * rayon::current_num_threads()).max(16);
+        let (spheres, triangles, quads) = scene.counts();
         let mut out = Packed::default();
-        for part in &parts {
-            out.spheres.append(&part.spheres);
-            out.triangles.append(&part.triangles);
-            out.quads.append(&part.quads);
+        out.spheres.reserve(spheres);
+        out.triangles.reserve(triangles);
+        out.quads.reserve(quads);
+        for batch in (0..scene.shapes.len()).step_by(batch_len) {
+            let ids = batch..(batch + batch_len).min(scene.shapes.len());
+            let parts: Vec<Packed> = (scene.shapes.par_chunks(ids, CHUNK))
+                .map(|(first, shapes)| {
+                    let mut part = Packed::default();
+                    for (j, shape) in shapes.enumerate() {
+                        part.push(shape, (first + j) as f32, eye);
+                    }
+                    part
+                })
+                .collect();
+            for part in &parts {
+                out.spheres.append(&part.spheres);
+                out.triangles.append(&part.triangles);
+                out.quads.append(&part.quads);
+            }
         }
         out
+    }
+
+    /// Appends `shape`'s constants seen from `eye` with id `id`, unless it is a polygon seen
+    /// edge-on.
+    #[inline]
+    fn push(&mut self, shape: Shape, id: f32, eye: DVec3) {
+        match shape {
+            Shape::Sphere { center, radius } => self
+                .spheres
+                .push(&SphereK::new(center, radius, eye).cast(), id),
+            Shape::Triangle(v) => {
+                if let Some(k) = TriangleK::triangle(&v, eye) {
+                    self.triangles.push(&k.cast(), id)
+                }
+            }
+            Shape::Quad(v) => {
+                if let Some(k) = QuadK::quad(&v, eye) {
+                    self.quads.push(&k.cast(), id)
+                }
+            }
+        }
     }
 
     /// The stores of prepared f64 constants, rounded to f32.

@@ -247,17 +247,21 @@ impl Shapes {
         }
     }
 
-    /// The primitives in consecutive pieces of `chunk` ids, in parallel: each piece's first id
-    /// and its primitives.
+    /// Primitives `ids` in consecutive pieces of `chunk` ids, in parallel: each piece's first
+    /// id and its primitives.
     pub fn par_chunks(
         &self,
+        ids: Range<usize>,
         chunk: usize,
     ) -> impl IndexedParallelIterator<Item = (usize, Iter<'_>)> + '_ {
+        assert!(ids.end <= self.len);
         let chunk = chunk.max(1);
-        (0..self.len.div_ceil(chunk)).into_par_iter().map(move |c| {
-            let first = c * chunk;
-            (first, self.range(first..(first + chunk).min(self.len)))
-        })
+        (0..ids.len().div_ceil(chunk))
+            .into_par_iter()
+            .map(move |c| {
+                let first = ids.start + c * chunk;
+                (first, self.range(first..(first + chunk).min(ids.end)))
+            })
     }
 
     /// The loose shapes (those not from a mesh), in id order.
@@ -388,10 +392,13 @@ mod tests {
                 assert_eq!(r, all[a..b], "{a}..{b}");
             }
         }
-        let chunks: Vec<(usize, Vec<Shape>)> =
-            s.par_chunks(3).map(|(f, it)| (f, it.collect())).collect();
+        let chunks: Vec<(usize, Vec<Shape>)> = s
+            .par_chunks(1..8, 3)
+            .map(|(f, it)| (f, it.collect()))
+            .collect();
         assert_eq!(chunks.len(), 3);
-        assert_eq!(chunks[2], (6, all[6..].to_vec()));
+        assert_eq!(chunks[0], (1, all[1..4].to_vec()));
+        assert_eq!(chunks[2], (7, all[7..].to_vec()));
     }
 
     #[test]

@@ -259,7 +259,7 @@ pub fn f32_range(scene: &Scene) -> Result<(), Error> {
     let eye = scene.camera.eye;
     let first = scene
         .shapes
-        .par_chunks(1 << 12)
+        .par_chunks(0..scene.shapes.len(), 1 << 12)
         .find_map_first(|(at, shapes)| {
             (shapes.enumerate())
                 .find_map(|(j, shape)| shape_f32(&shape, eye).err().map(|m| (at + j, m)))
