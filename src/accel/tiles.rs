@@ -72,7 +72,7 @@ use crate::kernel::polygon::polygon_lanes_all;
 #[cfg(test)]
 use crate::kernel::polygon::polygon_x8;
 use crate::kernel::scalar::ranges_x1;
-use crate::kernel::sphere::sphere_x8;
+use crate::kernel::sphere::sphere_lanes_all;
 use crate::kernel::{Hit, Hit8};
 use crate::real::{Real, V3};
 use crate::soa::Packed;
@@ -459,10 +459,10 @@ pub struct PacketLists {
 fn test_entry(p: &Packed, e: &Entry, d: &[f32x8; 3], hit: &mut Hit8) -> f32x8 {
     let i = (e.prim & INDEX_MASK) as usize;
     match e.prim >> KIND_SHIFT {
-        SPHERE => match sphere_x8(&p.spheres.get(i), d) {
-            Some((mask, t)) => hit.update(mask, t, p.spheres.id[i]),
-            None => f32x8::ZERO,
-        },
+        SPHERE => {
+            let (mask, t) = sphere_lanes_all(&p.spheres.get(i), d);
+            hit.update(mask, t, p.spheres.id[i])
+        }
         TRIANGLE => {
             let (mask, t) = polygon_lanes_all(&p.triangles.get(i), d);
             hit.update(mask, t, p.triangles.id[i])
@@ -477,6 +477,7 @@ fn test_entry(p: &Packed, e: &Entry, d: &[f32x8; 3], hit: &mut Hit8) -> f32x8 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::kernel::sphere::sphere_x8;
     use crate::scene::{CameraSpec, Scene, Shape};
     use crate::soa::Prepared;
     use glam::DVec3;

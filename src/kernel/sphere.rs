@@ -113,6 +113,23 @@ pub fn sphere_lanes<L: Lanes>(s: &SphereK<L::Scalar>, d: &[L; 3]) -> Option<(L, 
     Some((meets, t))
 }
 
+/// [`sphere_lanes`] with no early exit: the distance is computed for every packet and the
+/// mask may be empty (lanes whose line misses take a NaN distance, masked off). The same
+/// operations give the same bits where the mask is set. For the tiles' per-packet lists, where
+/// whether a packet meets a small sphere is as likely as not and the branch cannot predict it
+/// (as `polygon::polygon_lanes_all`).
+#[inline(always)]
+pub fn sphere_lanes_all<L: Lanes>(s: &SphereK<L::Scalar>, d: &[L; 3]) -> (L, L) {
+    let oc = s.oc.map(L::splat);
+    let b = oc[0] * d[0] + oc[1] * d[1] + oc[2] * d[2];
+    let l = [oc[0] - b * d[0], oc[1] - b * d[1], oc[2] - b * d[2]];
+    let disc = L::splat(s.r2) - (l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
+    let meets = disc.simd_ge(L::ZERO);
+    let q = b + disc.sqrt();
+    let t = if s.inside { q } else { L::splat(s.c) / q };
+    (meets, t)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -122,6 +139,36 @@ mod tests {
         let (m, t) = sphere_x8(s, &d8)?;
         let (m, t) = (m.to_array()[0], t.to_array()[0]);
         (m != 0.0 && t > 0.0 && t < f32::INFINITY).then_some(t)
+    }
+
+    /// The branch-free form gives the early-exit form's mask and, where it is set, its bits.
+    #[test]
+    fn lanes_all_agrees_with_lanes_where_the_line_meets() {
+        for (center, radius) in [(DVec3::new(0.3, -0.2, -5.0), 1.0), (DVec3::ZERO, 2.0)] {
+            let s = SphereK::new(center, radius, DVec3::ZERO).cast::<f32>();
+            for k in 0..64 {
+                let a = k as f32 * 0.05 - 1.6;
+                let dir = |i: usize| {
+                    let v = [a * 0.3 + i as f32 * 0.01, a * 0.2, -1.0];
+                    let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+                    v.map(|c| c / n)
+                };
+                let d: [f32x8; 3] =
+                    std::array::from_fn(|c| f32x8::new(std::array::from_fn(|i| dir(i)[c])));
+                let (mask, t) = sphere_lanes_all(&s, &d);
+                match sphere_lanes(&s, &d) {
+                    None => assert_eq!(mask.to_bitmask(), 0),
+                    Some((m, t1)) => {
+                        assert_eq!(mask.to_bitmask(), m.to_bitmask());
+                        for i in 0..8 {
+                            if m.to_bitmask() >> i & 1 == 1 {
+                                assert_eq!(t.to_array()[i].to_bits(), t1.to_array()[i].to_bits());
+                            }
+                        }
+                    }
+                }
+            }
+        }
     }
 
     #[test]
