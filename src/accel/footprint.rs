@@ -267,3 +267,102 @@ fn closest_to_origin(a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
     let denom = 1.0 / (va + vb + vc);
     a + ab * (vb * denom) + ac * (vc * denom)
 }
+
+/// The 4x2 packets of the image, for leaving out of a packet's list the polygons whose edge
+/// planes have every ray of the packet outside (`Tiles::split_tile`), one f32x8 lane per packet
+/// of a tile (packet `k` at column `k % 2`, row `k / 2` of the tile).
+///
+/// Derivation. A packet's rays go through the points `a = f + sx r + sy u` of the image plane
+/// at distance 1 (`f`, `r`, `u` orthonormal, so `|a| >= 1`), with `sx`, `sy` its pixels' screen
+/// coordinates from the f32 ray tables the kernel reads. All lie within `R` of the packet's
+/// centre point `c` (`R`: the largest half diagonal of a packet's `sx`, `sy` box over the
+/// image). For a unit edge normal `n`, `n . a <= n . c + R`, and the kernel accepts a ray only
+/// when `n . a / |a| >= -eps` (8u edge tolerance) to within its rounding, with
+/// `|a| <= A + R` (`A`: the largest `|a|` over the image). So when
+/// `n . c < -(R + (eps + m) (A + R))`, no ray of the packet is accepted by that edge: `m` =
+/// [`ANGLE_MARGIN`] (32u) covers the kernel's f32 dot product and ray (~8u) and this test's
+/// own f32 centre and dot product (~6u A). Equal ids and depths to the whole list follow
+/// (tests/accel.rs: tiles == none, bit for bit).
+pub(crate) struct PacketCones {
+    /// `-(R + (eps + m) (A + R))`, rounded down.
+    limit: f32,
+}
+
+impl PacketCones {
+    /// The bound for the ray tables `t` (padded to whole packets).
+    pub(crate) fn new(t: &crate::camera::RayTables<f32>) -> PacketCones {
+        use crate::kernel::packet::{BLOCK_H, BLOCK_W};
+        let eps = f64::from(crate::kernel::edge_eps::<f32>());
+        let half = |v: &[f32], n: usize| {
+            (0..v.len().saturating_sub(n - 1))
+                .map(|i| (f64::from(v[i + n - 1]) - f64::from(v[i])).abs() / 2.0)
+                .fold(0.0, f64::max)
+        };
+        let rad = half(&t.sx, BLOCK_W).hypot(half(&t.sy, BLOCK_H));
+        let (f, r, u) = (t.f.map(f64::from), t.r.map(f64::from), t.u.map(f64::from));
+        let ends = |v: &[f32]| [v[0], v[v.len() - 1]].map(f64::from);
+        let mut far: f64 = 1.0;
+        for sx in ends(&t.sx) {
+            for sy in ends(&t.sy) {
+                let a: [f64; 3] = std::array::from_fn(|i| f[i] + sx * r[i] + sy * u[i]);
+                far = far.max((a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt());
+            }
+        }
+        PacketCones {
+            limit: crate::real::f32_down(-(rad + (eps + ANGLE_MARGIN) * (far + rad))),
+        }
+    }
+
+    /// The centre points of tile `(tx, ty)`'s packets (x, y and z, one lane per packet).
+    #[inline]
+    pub(crate) fn centres(
+        t: &crate::camera::RayTables<f32>,
+        (tx, ty): (usize, usize),
+    ) -> [wide::f32x8; 3] {
+        use crate::kernel::packet::{BLOCK_H, BLOCK_W};
+        let at = |v: &[f32], i: usize| v[i.min(v.len() - 1)];
+        let mid = |v: &[f32], i: usize, n: usize| (at(v, i) + at(v, i + n - 1)) * 0.5;
+        let sx: [f32; 8] = std::array::from_fn(|k| {
+            mid(
+                &t.sx,
+                tx * TILE_W + k % (TILE_W / BLOCK_W) * BLOCK_W,
+                BLOCK_W,
+            )
+        });
+        let sy: [f32; 8] = std::array::from_fn(|k| {
+            mid(
+                &t.sy,
+                ty * TILE_H + k / (TILE_W / BLOCK_W) * BLOCK_H,
+                BLOCK_H,
+            )
+        });
+        let (sx, sy) = (wide::f32x8::new(sx), wide::f32x8::new(sy));
+        std::array::from_fn(|i| {
+            wide::f32x8::splat(t.f[i])
+                + sx * wide::f32x8::splat(t.r[i])
+                + sy * wide::f32x8::splat(t.u[i])
+        })
+    }
+
+    /// The packets (bits) of the tile with centre points `c` that edge normals `n[e]` (x, y, z
+    /// columns of the packed store) of polygon `i` may accept: those not wholly outside any
+    /// one edge plane.
+    #[inline]
+    pub(crate) fn polygon<const N: usize>(
+        &self,
+        c: &[wide::f32x8; 3],
+        n: &[[Vec<f32>; 3]; N],
+        i: usize,
+    ) -> u32 {
+        use wide::f32x8;
+        let limit = f32x8::splat(self.limit);
+        let mut out = f32x8::ZERO;
+        for edge in n {
+            let dot = c[0] * f32x8::splat(edge[0][i])
+                + c[1] * f32x8::splat(edge[1][i])
+                + c[2] * f32x8::splat(edge[2][i]);
+            out |= dot.simd_lt(limit);
+        }
+        !out.to_bitmask() & 0xFF
+    }
+}
