@@ -281,11 +281,21 @@ fn closest_to_origin(a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
 /// `|a| <= A + R` (`A`: the largest `|a|` over the image). So when
 /// `n . c < -(R + (eps + m) (A + R))`, no ray of the packet is accepted by that edge: `m` =
 /// [`ANGLE_MARGIN`] (32u) covers the kernel's f32 dot product and ray (~8u) and this test's
-/// own f32 centre and dot product (~6u A). Equal ids and depths to the whole list follow
-/// (tests/accel.rs: tiles == none, bit for bit).
+/// own f32 centre and dot product (~6u A).
+///
+/// Spheres: the kernel meets a ray `d` only when the sphere's centre lies within `r + m |oc|`
+/// of its line (the f32 silhouette errs by ~4u |oc|; see `reaches_sphere`), `|oc x d| <=
+/// r + m |oc|`, so `|oc x a| <= (r + m |oc|) (A + R)`; and `|oc x a| >= |oc x c| - |oc| R`.
+/// So when `|oc x c| > |oc| R + (r + m |oc|) (A + R) + m |oc| A` (the last term for this
+/// test's f32 cross product), no ray of the packet meets it. With the eye inside (`|oc| <= r`)
+/// the right side exceeds `|oc| A >= |oc x c|`: never left out. Equal ids and depths to the
+/// whole list follow (tests/accel.rs: tiles == none, bit for bit).
 pub(crate) struct PacketCones {
     /// `-(R + (eps + m) (A + R))`, rounded down.
     limit: f32,
+    /// `R` and `A`, rounded up.
+    rad: f32,
+    far: f32,
 }
 
 impl PacketCones {
@@ -310,6 +320,8 @@ impl PacketCones {
         }
         PacketCones {
             limit: crate::real::f32_down(-(rad + (eps + ANGLE_MARGIN) * (far + rad))),
+            rad: crate::real::f32_up(rad),
+            far: crate::real::f32_up(far),
         }
     }
 
@@ -364,5 +376,26 @@ impl PacketCones {
             out |= dot.simd_lt(limit);
         }
         !out.to_bitmask() & 0xFF
+    }
+
+    /// The packets (bits) of the tile with centre points `c` that sphere `i` of `s` may meet.
+    #[inline]
+    pub(crate) fn sphere(&self, c: &[wide::f32x8; 3], s: &crate::soa::Spheres, i: usize) -> u32 {
+        use wide::f32x8;
+        let oc = [s.ocx[i], s.ocy[i], s.ocz[i]];
+        let len = (oc[0] * oc[0] + oc[1] * oc[1] + oc[2] * oc[2]).sqrt();
+        let r = s.r2[i].sqrt();
+        let m = ANGLE_MARGIN as f32;
+        let (a, rad) = (self.far, self.rad);
+        // in f32, rounded up by the margin's 1 + 1e-5 (the terms are positive)
+        let rhs = (len * (rad + m * (2.0 * a + rad)) + r * (a + rad)) * (1.0 + 1e-5);
+        let o = oc.map(f32x8::splat);
+        let x = [
+            o[1] * c[2] - o[2] * c[1],
+            o[2] * c[0] - o[0] * c[2],
+            o[0] * c[1] - o[1] * c[0],
+        ];
+        let cross2 = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
+        !cross2.simd_gt(f32x8::splat(rhs * rhs)).to_bitmask() & 0xFF
     }
 }

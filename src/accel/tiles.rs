@@ -319,12 +319,13 @@ impl Tiles {
             let cols = (1u32 << (cx1 + 1)) - (1 << cx0);
             let rows = ((1u32 << (2 * ry1 + 2)) - (1 << (2 * ry0))) / 3;
             let mut mask = cols * rows;
-            // and, for a polygon, not the packets wholly outside one of its edge planes
+            // and not the packets wholly outside one of a polygon's edge planes, or too far
+            // from a sphere (`PacketCones`)
             let index = (e.prim & INDEX_MASK) as usize;
             match e.prim >> KIND_SHIFT {
                 TRIANGLE => mask &= cones.polygon(&centres, &p.triangles.n, index),
                 QUAD => mask &= cones.polygon(&centres, &p.quads.n, index),
-                _ => {}
+                _ => mask &= cones.sphere(&centres, &p.spheres, index),
             }
             for k in 0..PACKETS {
                 lists.index[k * n + lists.len[k]] = i as u32;
@@ -624,7 +625,7 @@ mod tests {
 
     /// `split_tile` gives each packet the tile's entries whose rectangles reach that packet's
     /// pixels, in the tile's (nearest-first) order, less polygons whose edge planes have all its
-    /// rays outside (`PacketCones`), and never leaves out a primitive that the packet kernel
+    /// rays outside and spheres whose centres lie too far from its rays (`PacketCones`), and never leaves out a primitive that the packet kernel
     /// accepts on one of its rays; for every tile, including the partial ones at the right and
     /// bottom borders.
     #[test]
