@@ -1,7 +1,8 @@
 //! Where a primitive can appear on screen, for the tiles (`tiles.rs`, whose module comment
 //! derives every bound used here): the screen geometry, a primitive's conservative pixel
-//! rectangle and its `near` distance bound, and the corner rays of each tile, which leave out
-//! the tiles of a rectangle that the kernel cannot reach.
+//! rectangle and its `near` distance bound, the corner rays of each tile, which leave out
+//! the tiles of a rectangle that the kernel cannot reach, and the centre rays of each tile's
+//! packets ([`PacketCones`]), which leave out of a packet's list what none of its rays meets.
 
 use super::tiles::{TILE_H, TILE_W};
 use crate::camera::Camera;

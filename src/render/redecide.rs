@@ -347,10 +347,24 @@ impl<'s> Redecide<'s> {
         carried: f32x8,
     ) -> u32 {
         let hits = hit.id.simd_ge(f32x8::ZERO);
-        let mut suspect = (hits & hit.t.simd_gt(carried)).to_bitmask();
+        let suspect = (hits & hit.t.simd_gt(carried)).to_bitmask();
         if suspect == 0 {
             return 0;
         }
+        self.fix_suspects(walk, (bx, by, bw), hit, suspect)
+    }
+
+    /// The rest of [`Redecide::fix_packet_carried`] for the lanes of `suspect` (bits): kept
+    /// out of the packet loop, which rarely comes here.
+    #[cold]
+    #[inline(never)]
+    fn fix_suspects(
+        &self,
+        walk: &Walk,
+        (bx, by, bw): (usize, usize, usize),
+        hit: &mut Hit8,
+        mut suspect: u32,
+    ) -> u32 {
         let (t, id) = (hit.t.to_array(), hit.id.to_array());
         let mut untrusted = 0;
         while suspect != 0 {
