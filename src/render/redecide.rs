@@ -316,6 +316,19 @@ impl<'s> Redecide<'s> {
         if !(hits & hit.t.simd_gt(f32x8::splat(self.safe))).any() {
             return 0;
         }
+        self.fix_beyond_safe(walk, (bx, by, bw), hit, hits)
+    }
+
+    /// The rest of [`Redecide::fix_packet`], for a packet with a hit beyond `safe`: kept out of
+    /// the packet loop.
+    #[inline(never)]
+    fn fix_beyond_safe(
+        &self,
+        walk: &Walk,
+        (bx, by, bw): (usize, usize, usize),
+        hit: &mut Hit8,
+        hits: f32x8,
+    ) -> u32 {
         // ids are exact in f32 and below `limits.len()`; background lanes read entry 0
         let none = [0.0, f32::INFINITY];
         let limit = |id: f32| *self.limits.get(id as usize).unwrap_or(&none);
