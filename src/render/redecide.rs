@@ -65,16 +65,19 @@ use crate::accel::bvh::{ranges_x4d, trace_bvh_x1, trace_bvh_x4d};
 use crate::accel::{Bvh, Tiles};
 use crate::camera::{Camera, RayTables};
 use crate::kernel::Hit8;
-use crate::kernel::methods::wide64::{Hit4d, dir_x4d, sphere_x4d};
-use crate::kernel::polygon::{QuadK, TriangleK, polygon_x1};
+use crate::kernel::methods::wide64::{Hit4d, dir_x4d};
+use crate::kernel::polygon::{QuadK, TriangleK};
 use crate::kernel::scalar::trace_x1;
-use crate::kernel::sphere::{SphereK, sphere_x1};
+use crate::kernel::sphere::SphereK;
 use crate::real::{f32_down, f32_up};
-use crate::scene::{Scene, Shape};
+use crate::scene::Scene;
 use crate::soa::{Packed, Records, SceneRecords};
 use rayon::prelude::*;
 use std::cell::RefCell;
 use wide::{f32x8, f64x4};
+
+mod verify;
+use verify::Oracle;
 
 /// The guarantee of `--precision auto`: every pixel's depth is within this relative distance
 /// of the f64 oracle's depth for the same primitive.
@@ -120,14 +123,6 @@ pub(crate) struct Walk<'a> {
     last: std::cell::Cell<(usize, Option<Oracle>)>,
     tiles: Option<&'a Tiles>,
     bvh: Option<&'a Bvh>,
-}
-
-/// One primitive's f64 constants, as the oracle computes them.
-#[derive(Debug, Clone, Copy)]
-enum Oracle {
-    Sphere(SphereK<f64>),
-    Triangle(TriangleK<f64>),
-    Quad(QuadK<f64>),
 }
 
 /// From this many untrusted lanes in a packet on, its rows are decided again in f64x4 lanes
@@ -396,130 +391,6 @@ impl<'s> Redecide<'s> {
         self.redo(walk, (bx, by, bw), hit, untrusted)
     }
 
-    /// The lanes of `untrusted` (bits) whose hits stay untrusted once measured against the
-    /// oracle's kernel for their own primitive ([`Redecide::verified`]). Lanes on one primitive
-    /// (the common case) are measured a row of four at a time in f64x4 lanes, each lane the
-    /// scalar kernel's answer bit for bit (`kernel::methods::wide64`).
-    #[inline]
-    fn recheck(
-        &self,
-        walk: &Walk,
-        (bx, by, bw): (usize, usize, usize),
-        hit: &Hit8,
-        untrusted: u32,
-    ) -> u32 {
-        if untrusted == 0 {
-            return 0;
-        }
-        let (t, id) = (hit.t.to_array(), hit.id.to_array());
-        let first = id[untrusted.trailing_zeros() as usize];
-        let one = (0..8).all(|l| untrusted >> l & 1 == 0 || id[l] == first);
-        if bw == 4 && untrusted.count_ones() >= ROW_MIN && one {
-            let k = self.oracle(walk, first as usize);
-            let mut out = 0;
-            for row in 0..2 {
-                let lanes = (untrusted >> (4 * row)) & 0xF;
-                if lanes != 0 {
-                    let t32 = std::array::from_fn(|i| t[4 * row + i]);
-                    let ok = self.verified_row(k, (bx, by + row), t32);
-                    out |= (lanes & !ok) << (4 * row);
-                }
-            }
-            return out;
-        }
-        let (mut left, mut out) = (untrusted, untrusted);
-        while left != 0 {
-            let lane = left.trailing_zeros() as usize;
-            let k = self.oracle(walk, id[lane] as usize);
-            if self.verified(k, t[lane], (bx + lane % bw, by + lane / bw)) {
-                out &= !(1 << lane);
-            }
-            left &= left - 1;
-        }
-        out
-    }
-
-    /// The oracle's constants of primitive `id` (`None`: a polygon seen edge-on, never hit),
-    /// from the walk's one-entry cache.
-    #[inline]
-    fn oracle(&self, walk: &Walk, id: usize) -> Option<Oracle> {
-        if let (key, k) = walk.last.get()
-            && key == id + 1
-        {
-            return k;
-        }
-        let eye = self.camera_eye;
-        let k = match self.scene.shapes.get(id) {
-            Shape::Sphere { center, radius } => {
-                Some(Oracle::Sphere(SphereK::new(center, radius, eye)))
-            }
-            Shape::Triangle(v) => TriangleK::triangle(&v, eye).map(Oracle::Triangle),
-            Shape::Quad(v) => QuadK::quad(&v, eye).map(Oracle::Quad),
-        };
-        walk.last.set((id + 1, k));
-        k
-    }
-
-    /// Whether the f32 hit at distance `t` on the primitive of `k` along pixel `(x, y)`'s ray
-    /// is within [`BUDGET`] of the oracle's distance for that primitive: the oracle's scalar
-    /// kernel (`sphere_x1`, `polygon_x1` in f64, with the oracle's constants and ray) run on
-    /// that one primitive. False where the oracle's kernel misses it (edge, silhouette).
-    fn verified(&self, k: Option<Oracle>, t: f32, (x, y): (usize, usize)) -> bool {
-        let d = self.tables.dir_x1(x, y);
-        let t64 = match k {
-            Some(Oracle::Sphere(k)) => sphere_x1(&k, d),
-            Some(Oracle::Triangle(k)) => polygon_x1(&k, d),
-            Some(Oracle::Quad(k)) => polygon_x1(&k, d),
-            None => None,
-        };
-        t64.is_some_and(|t64| (t as f64 - t64).abs() <= BUDGET * t64)
-    }
-
-    /// [`Redecide::verified`] for the four pixels `x0..x0 + 4` of row `y`, hits `t`: the
-    /// lanes verified, as bits. Polygons are measured against their plane alone, without
-    /// dividing: with `v` the pixel's unnormalised f64 ray (`dir_x4d` before its division),
-    /// the oracle's distance is `t64 = p |v| / (v . N)`, and `|t - t64| <= BUDGET t64` is
-    /// `|t (v . N) - p |v|| <= BUDGET p |v|` for `v . N > 0` (the same test to f64 rounding,
-    /// ~1e-16). Their edges are not tested again: an f32 edge decision differs from the
-    /// oracle's only within its band (module comment, "Ids"), whatever the depth.
-    #[inline]
-    fn verified_row(&self, k: Option<Oracle>, (x0, y): (usize, usize), t: [f32; 4]) -> u32 {
-        let tb = &self.tables;
-        let sx = f64x4::new(std::array::from_fn(|i| tb.sx[x0 + i]));
-        let sy = f64x4::splat(tb.sy[y]);
-        let t32 = f64x4::new(t.map(f64::from));
-        let plane = |nrm: [f64; 3], p: f64| {
-            let (f, r, u) = (tb.f, tb.r, tb.u);
-            let v: [f64x4; 3] = std::array::from_fn(|i| {
-                f64x4::splat(f[i]) + sx * f64x4::splat(r[i]) + sy * f64x4::splat(u[i])
-            });
-            let len = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-            let dn = v[0] * f64x4::splat(nrm[0])
-                + v[1] * f64x4::splat(nrm[1])
-                + v[2] * f64x4::splat(nrm[2]);
-            let pl = f64x4::splat(p) * len;
-            let ok =
-                dn.simd_gt(f64x4::ZERO) & (t32 * dn - pl).abs().simd_le(f64x4::splat(BUDGET) * pl);
-            ok.to_bitmask()
-        };
-        match k {
-            Some(Oracle::Triangle(k)) => plane(k.nrm, k.p),
-            Some(Oracle::Quad(k)) => plane(k.nrm, k.p),
-            Some(Oracle::Sphere(k)) => {
-                let Some((mask, t64)) = sphere_x4d(&k, &dir_x4d(tb, sx, sy)) else {
-                    return 0;
-                };
-                // the scalar kernel's conditions: a hit ahead of the eye, finite
-                let ok = mask
-                    & t64.simd_gt(f64x4::ZERO)
-                    & t64.simd_lt(f64x4::splat(f64::INFINITY))
-                    & (t32 - t64).abs().simd_le(f64x4::splat(BUDGET) * t64);
-                ok.to_bitmask()
-            }
-            None => 0,
-        }
-    }
-
     /// The trusted distance to carry for a lane won by primitive `index` of kind `kind`
     /// (0 sphere, 1 triangle, 2 quad): its `hi`, or -inf when it also has a `lo`.
     #[inline(always)]
@@ -601,96 +472,5 @@ impl<'s> Redecide<'s> {
             _ => trace_x1(&walk.records, d),
         };
         (h.t as f32, h.id as f32)
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::scene::{CameraSpec, Shapes};
-    use glam::DVec3;
-
-    /// A hit beyond its primitive's limits is kept exactly when its distance is within
-    /// `BUDGET` of the oracle's for that primitive, measured one lane at a time and by rows.
-    #[test]
-    fn measured_hits_are_kept_only_within_the_budget() {
-        // scene 7's far-reaching triangle (grazing far away) and a sphere far larger than its
-        // distance to the eye, seen near its horizon
-        let mut shapes = Shapes::new();
-        let v = |x, y, z| DVec3::new(x, y, z);
-        shapes.push(
-            Shape::Triangle([
-                v(0.0, -0.15, -0.48),
-                v(-42.0, 24.0, -80.0),
-                v(42.0, 24.0, -80.0),
-            ]),
-            1,
-        );
-        shapes.push(
-            Shape::Sphere {
-                center: v(0.0, -1.0e4 - 1.5, -20.0),
-                radius: 1.0e4,
-            },
-            2,
-        );
-        let scene = Scene {
-            source: "t.sc".into(),
-            camera: CameraSpec {
-                eye: DVec3::ZERO,
-                look: v(0.0, 0.0, -1.0),
-                up: DVec3::Y,
-                fov_deg: None,
-            },
-            shapes,
-            warnings: Vec::new(),
-        };
-        let camera = Camera::new(&scene.camera, 60.0, 64, 48);
-        let packed = Packed::from_scene(&scene, camera.eye);
-        let r = Redecide::new(&scene, &camera, &packed);
-        let walk = r.walk(&packed, None, None);
-        let (mut kept, mut refused) = (0, 0);
-        for by in (0..48).step_by(2) {
-            for bx in (0..64).step_by(4) {
-                // the oracle's distance of each lane for each primitive, then f32 hits at it
-                // and at 2 BUDGET beyond it
-                for id in 0..2 {
-                    let k = r.oracle(&walk, id);
-                    let t64: [Option<f64>; 8] = std::array::from_fn(|l| {
-                        let d = r.tables.dir_x1(bx + l % 4, by + l / 4);
-                        match k {
-                            Some(Oracle::Sphere(k)) => sphere_x1(&k, d),
-                            Some(Oracle::Triangle(k)) => polygon_x1(&k, d),
-                            _ => None,
-                        }
-                    });
-                    let lanes: u32 = (0..8)
-                        .filter(|&l| t64[l].is_some())
-                        .fold(0, |m, l| m | 1 << l);
-                    if lanes == 0 {
-                        continue;
-                    }
-                    for (scale, want_kept) in [(1.0, true), (1.0 + 2.0 * BUDGET, false)] {
-                        let t = t64.map(|t| t.map_or(f32::INFINITY, |t| (t * scale) as f32));
-                        let hit = Hit8 {
-                            t: f32x8::new(t),
-                            id: f32x8::splat(id as f32),
-                        };
-                        // rows (two or more lanes) and one lane at a time
-                        let single = 1 << lanes.trailing_zeros();
-                        for mask in [lanes, single] {
-                            let left = r.recheck(&walk, (bx, by, 4), &hit, mask);
-                            if want_kept {
-                                assert_eq!(left, 0, "id {id} at ({bx}, {by}) lanes {mask:08b}");
-                                kept += mask.count_ones();
-                            } else {
-                                assert_eq!(left, mask, "id {id} at ({bx}, {by})");
-                                refused += mask.count_ones();
-                            }
-                        }
-                    }
-                }
-            }
-        }
-        assert!(kept > 500 && refused > 500, "{kept} {refused}");
     }
 }

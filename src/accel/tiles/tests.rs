@@ -1,0 +1,207 @@
+//! The tiles' unit tests: binning, footprints and the per-packet split against brute force.
+
+use super::*;
+use crate::kernel::sphere::sphere_x8;
+use crate::scene::{CameraSpec, Scene, Shape};
+use crate::soa::Prepared;
+use glam::DVec3;
+
+/// xorshift64*, uniform in [0, 1).
+struct Rng(u64);
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn point(&mut self, half: f64) -> DVec3 {
+        DVec3::new(self.next(), self.next(), self.next()) * 2.0 * half - half
+    }
+}
+
+/// Primitives of every kind and size around the eye: tiny and large, in front, crossing
+/// the eye's plane, behind, and the eye inside one sphere.
+fn scene(seed: u64, eye: DVec3, look: DVec3, fov: f64) -> Scene {
+    let mut rng = Rng(seed);
+    let mut shapes = Vec::new();
+    for i in 0..300 {
+        let size = [0.01, 0.1, 1.0, 5.0][i % 4];
+        let c = rng.point(6.0);
+        match i % 3 {
+            0 => shapes.push(Shape::Sphere {
+                center: c,
+                radius: size * (0.2 + rng.next()),
+            }),
+            1 => shapes.push(Shape::Triangle([
+                c,
+                c + rng.point(size),
+                c + rng.point(size),
+            ])),
+            _ => {
+                let (a, b) = (rng.point(size), rng.point(size));
+                shapes.push(Shape::Quad([c, c + a, c + a + b, c + b]));
+            }
+        }
+    }
+    shapes.push(Shape::Sphere {
+        center: eye + DVec3::new(0.1, 0.0, 0.0),
+        radius: 20.0,
+    });
+    Scene {
+        source: "tiles.sc".into(),
+        camera: CameraSpec {
+            eye,
+            look,
+            up: DVec3::Y,
+            fov_deg: Some(fov),
+        },
+        shapes: shapes.into(),
+        warnings: Vec::new(),
+    }
+}
+
+/// The claims the binning rests on, checked ray by ray against the kernels themselves: every
+/// pixel whose ray a primitive's f32 kernel accepts lies in that primitive's rectangle, and
+/// the distance it returns is at least the entry's `near`.
+#[test]
+fn kernels_accept_rays_only_inside_rectangles_and_beyond_near() {
+    for (seed, fov) in [(1, 60.0), (2, 150.0), (3, 20.0)] {
+        let eye = DVec3::new(0.3, 0.2, 1.0);
+        let scene = scene(seed, eye, DVec3::new(0.0, 0.0, -3.0), fov);
+        let camera = Camera::new(&scene.camera, fov, 97, 61);
+        let packed = Packed::new(&Prepared::new(&scene, eye));
+        let tiles = Tiles::new(&scene, &packed, &camera);
+        let mut first: std::collections::HashMap<u32, Entry> = Default::default();
+        for e in &tiles.entries {
+            first.entry(e.prim).or_insert(*e);
+        }
+        let tables = camera.tables::<f32>(1, 1);
+        let mut accepted = 0;
+        for y in 0..61 {
+            for x in 0..97 {
+                let d = tables.dir_x1(x, y).map(f32x8::splat);
+                let kinds = [
+                    (SPHERE, packed.spheres.len()),
+                    (TRIANGLE, packed.triangles.len()),
+                    (QUAD, packed.quads.len()),
+                ];
+                for (kind, n) in kinds {
+                    for i in 0..n {
+                        let found = match kind {
+                            SPHERE => sphere_x8(&packed.spheres.get(i), &d),
+                            TRIANGLE => polygon_x8(&packed.triangles.get(i), &d),
+                            _ => polygon_x8(&packed.quads.get(i), &d),
+                        };
+                        let Some((mask, t)) = found else { continue };
+                        let (m, t) = (mask.to_array()[0], t.to_array()[0]);
+                        if m == 0.0 || t.is_nan() || t <= 0.0 {
+                            continue;
+                        }
+                        accepted += 1;
+                        let prim = kind << KIND_SHIFT | i as u32;
+                        let e = first.get(&prim).unwrap_or_else(|| {
+                            panic!(
+                                "seed {seed}: kind {kind} #{i} hit at ({x}, {y}), binned nowhere"
+                            )
+                        });
+                        let [x0, y0, x1, y1] = e.rect.map(|v| v as usize);
+                        assert!(
+                            (x0..=x1).contains(&x) && (y0..=y1).contains(&y),
+                            "seed {seed}: kind {kind} #{i} hit at ({x}, {y}) outside {:?}",
+                            e.rect
+                        );
+                        assert!(t >= e.near, "seed {seed}: t {t} < near {}", e.near);
+                        // the tile-frustum test kept it in this pixel's tile
+                        assert!(
+                            tiles
+                                .list(x / TILE_W, y / TILE_H)
+                                .iter()
+                                .any(|e| e.prim == prim),
+                            "seed {seed}: kind {kind} #{i} hit at ({x}, {y}), not in its tile"
+                        );
+                    }
+                }
+            }
+        }
+        assert!(
+            accepted > 1000,
+            "seed {seed}: the scene must be seen ({accepted})"
+        );
+    }
+}
+
+/// `split_tile` gives each packet the tile's entries whose rectangles reach that packet's
+/// pixels, in the tile's (nearest-first) order, less polygons whose edge planes have all its
+/// rays outside and spheres whose centres lie too far from its rays (`PacketCones`), and never leaves out a primitive that the packet kernel
+/// accepts on one of its rays; for every tile, including the partial ones at the right and
+/// bottom borders.
+#[test]
+fn split_tile_keeps_the_entries_reaching_each_packet() {
+    let eye = DVec3::new(0.3, 0.2, 1.0);
+    let scene = scene(4, eye, DVec3::new(0.0, 0.0, -3.0), 70.0);
+    let (w, h): (usize, usize) = (101, 45);
+    let camera = Camera::new(&scene.camera, 70.0, w as u32, h as u32);
+    let packed = Packed::new(&Prepared::new(&scene, eye));
+    let tiles = Tiles::new(&scene, &packed, &camera);
+    let tables = camera.tables::<f32>(BLOCK_W as u32, BLOCK_H as u32);
+    let cones = PacketCones::new(&tables);
+    let mut lists = PacketLists::default();
+    let (mut kept, mut rect_only, mut culled) = (0, 0, 0);
+    for ty in 0..h.div_ceil(TILE_H) {
+        for tx in 0..w.div_ceil(TILE_W) {
+            tiles.split_tile(&packed, &cones, &tables, (tx, ty), &mut lists);
+            let list = tiles.list(tx, ty);
+            for k in 0..PACKETS {
+                let x0 = tx * TILE_W + k % (TILE_W / BLOCK_W) * BLOCK_W;
+                let y0 = ty * TILE_H + k / (TILE_W / BLOCK_W) * BLOCK_H;
+                let (x1, y1) = (x0 + BLOCK_W - 1, y0 + BLOCK_H - 1);
+                let by_rect: Vec<u32> = (0..list.len() as u32)
+                    .filter(|&i| {
+                        let [rx0, ry0, rx1, ry1] = list[i as usize].rect.map(usize::from);
+                        rx0 <= x1 && x0 <= rx1 && ry0 <= y1 && y0 <= ry1
+                    })
+                    .collect();
+                let got = &lists.index[k * lists.stride..][..lists.len[k]];
+                // in order, and a subset of the rectangle test's
+                let mut rest = by_rect.iter();
+                assert!(
+                    got.iter().all(|g| rest.any(|r| r == g)),
+                    "tile ({tx}, {ty})"
+                );
+                if x0 >= w || y0 >= h {
+                    continue;
+                }
+                // the packet's rays, as the kernel takes them
+                let dirs: [V3<f32>; 8] = std::array::from_fn(|l| {
+                    tables.dir_x1((x0 + l % BLOCK_W).min(w - 1), (y0 + l / BLOCK_W).min(h - 1))
+                });
+                let d: [f32x8; 3] = std::array::from_fn(|c| f32x8::new(dirs.map(|v| v[c])));
+                for &i in &by_rect {
+                    let e = list[i as usize];
+                    let idx = (e.prim & INDEX_MASK) as usize;
+                    let accepted = match e.prim >> KIND_SHIFT {
+                        TRIANGLE => polygon_x8(&packed.triangles.get(idx), &d),
+                        QUAD => polygon_x8(&packed.quads.get(idx), &d),
+                        _ => sphere_x8(&packed.spheres.get(idx), &d),
+                    }
+                    .is_some_and(|(m, t)| (m & t.simd_gt(f32x8::ZERO)).any());
+                    let listed = got.contains(&i);
+                    assert!(
+                        listed || !accepted,
+                        "tile ({tx}, {ty}) packet {k} entry {i}"
+                    );
+                    match (listed, accepted) {
+                        (true, true) => kept += 1,
+                        (true, false) => rect_only += 1,
+                        (false, _) => culled += 1,
+                    }
+                }
+            }
+        }
+    }
+    assert!(
+        kept > 1000 && rect_only > 100 && culled > 100,
+        "every case occurs: {kept} accepted, {rect_only} listed but missed, {culled} left out"
+    );
+}
