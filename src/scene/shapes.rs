@@ -91,6 +91,15 @@ impl Shapes {
 
     /// Appends a loose shape written on `line` (0: no scene line, e.g. an OBJ rendered alone).
     pub fn push(&mut self, shape: Shape, line: usize) {
+        self.extend_loose_run(self.loose.len());
+        self.loose.push(shape);
+        self.loose_lines.push(line32(line));
+        self.len += 1;
+    }
+
+    /// Makes the next id continue a run of loose shapes, starting one at index `at` of
+    /// `loose` unless the last run is loose already.
+    fn extend_loose_run(&mut self, at: usize) {
         if !matches!(
             self.runs.last(),
             Some(Run {
@@ -100,12 +109,9 @@ impl Shapes {
         ) {
             self.runs.push(Run {
                 first: self.len,
-                src: Src::Loose(self.loose.len()),
+                src: Src::Loose(at),
             });
         }
-        self.loose.push(shape);
-        self.loose_lines.push(line32(line));
-        self.len += 1;
     }
 
     /// Appends a mesh's faces, all on `line`.
@@ -138,18 +144,7 @@ impl Shapes {
             match part {
                 Part::Loose(0) => {}
                 Part::Loose(n) => {
-                    if !matches!(
-                        s.runs.last(),
-                        Some(Run {
-                            src: Src::Loose(_),
-                            ..
-                        })
-                    ) {
-                        s.runs.push(Run {
-                            first: s.len,
-                            src: Src::Loose(taken),
-                        });
-                    }
+                    s.extend_loose_run(taken);
                     taken += n;
                     s.len += n;
                 }
