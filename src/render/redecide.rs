@@ -43,8 +43,10 @@
 //! one primitive, along that pixel's f64 ray, gives the oracle's distance `t64` for the same
 //! primitive, and the hit is kept when `|t - t64| <= 0.9e-5 t64`: exactly the quantity the
 //! guarantee bounds, measured to f64 precision. One primitive's test costs a fraction of a
-//! re-decision's walk through the pixel's candidates. A ray the oracle's kernel does not see
-//! hitting that primitive (at an edge or a silhouette) is re-decided.
+//! re-decision's walk through the pixel's candidates. A polygon is measured by its plane: the
+//! f32 edge decision is kept, since it differs from the oracle's only within its band (below),
+//! whatever the depth. A sphere is measured with the oracle's kernel, and a ray it does not see
+//! meeting the sphere (at its silhouette) is re-decided.
 //!
 //! Ids: a re-decided pixel takes the oracle's id. An f32 pixel that is not re-decided keeps its
 //! id; it can differ from the oracle's only where the f32 edge tests (8u edge tolerance, ~2u
@@ -84,7 +86,7 @@ use verify::Oracle;
 pub const TOLERANCE: f64 = 1e-5;
 
 /// f32 unit roundoff.
-const U: f64 = f32::EPSILON as f64 / 2.0;
+const U: f64 = crate::real::U32;
 /// Polygon bound `u (POLY_A + POLY_B t / p)` (derived above).
 const POLY_A: f64 = 2.0;
 const POLY_B: f64 = 6.0;

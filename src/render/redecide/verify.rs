@@ -6,8 +6,8 @@
 use super::{BUDGET, ROW_MIN, Redecide, Walk};
 use crate::kernel::Hit8;
 use crate::kernel::methods::wide64::{dir_x4d, sphere_x4d};
-use crate::kernel::polygon::{QuadK, TriangleK, polygon_x1};
-use crate::kernel::sphere::{SphereK, sphere_x1};
+use crate::kernel::polygon::{QuadK, TriangleK};
+use crate::kernel::sphere::SphereK;
 use crate::scene::Shape;
 use wide::f64x4;
 
@@ -85,22 +85,18 @@ impl Redecide<'_> {
     }
 
     /// Whether the f32 hit at distance `t` on the primitive of `k` along pixel `(x, y)`'s ray
-    /// is within [`BUDGET`] of the oracle's distance for that primitive: the oracle's scalar
-    /// kernel (`sphere_x1`, `polygon_x1` in f64, with the oracle's constants and ray) run on
-    /// that one primitive. False where the oracle's kernel misses it (edge, silhouette).
+    /// is within [`BUDGET`] of the oracle's distance for that primitive: lane 0 of
+    /// [`Redecide::verified_row`], so one lane and a row follow one rule.
     fn verified(&self, k: Option<Oracle>, t: f32, (x, y): (usize, usize)) -> bool {
-        let d = self.tables.dir_x1(x, y);
-        let t64 = match k {
-            Some(Oracle::Sphere(k)) => sphere_x1(&k, d),
-            Some(Oracle::Triangle(k)) => polygon_x1(&k, d),
-            Some(Oracle::Quad(k)) => polygon_x1(&k, d),
-            None => None,
-        };
-        t64.is_some_and(|t64| (t as f64 - t64).abs() <= BUDGET * t64)
+        self.verified_row(k, (x, y), [t; 4]) & 1 != 0
     }
 
-    /// [`Redecide::verified`] for the four pixels `x0..x0 + 4` of row `y`, hits `t`: the
-    /// lanes verified, as bits. Polygons are measured against their plane alone, without
+    /// Which of the f32 hits `t` of the four pixels `x0..x0 + 4` of row `y` (past the image:
+    /// its last column again) on the primitive of `k` are within [`BUDGET`] of the oracle's
+    /// distance for that primitive, as bits. Spheres through the oracle's kernel
+    /// (`sphere_x4d`, each lane `sphere_x1` bit for bit, with the oracle's constants and ray):
+    /// a ray it does not see meeting the sphere (its silhouette) is not verified. Polygons are
+    /// measured against their plane alone, without
     /// dividing: with `v` the pixel's unnormalised f64 ray (`dir_x4d` before its division),
     /// the oracle's distance is `t64 = p |v| / (v . N)`, and `|t - t64| <= BUDGET t64` is
     /// `|t (v . N) - p |v|| <= BUDGET p |v|` for `v . N > 0` (the same test to f64 rounding,
@@ -109,7 +105,9 @@ impl Redecide<'_> {
     #[inline]
     fn verified_row(&self, k: Option<Oracle>, (x0, y): (usize, usize), t: [f32; 4]) -> u32 {
         let tb = &self.tables;
-        let sx = f64x4::new(std::array::from_fn(|i| tb.sx[x0 + i]));
+        let sx = f64x4::new(std::array::from_fn(|i| {
+            tb.sx[(x0 + i).min(tb.sx.len() - 1)]
+        }));
         let sy = f64x4::splat(tb.sy[y]);
         let t32 = f64x4::new(t.map(f64::from));
         let plane = |nrm: [f64; 3], p: f64| {
@@ -150,6 +148,7 @@ mod tests {
     use super::*;
     use crate::camera::Camera;
     use crate::kernel::polygon::polygon_x1;
+    use crate::kernel::sphere::sphere_x1;
     use crate::scene::Scene;
     use crate::scene::{CameraSpec, Shapes};
     use crate::soa::Packed;
