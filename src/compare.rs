@@ -30,7 +30,7 @@ pub const TIE_REL: f64 = 1e-5;
 /// Half-width, in radians, of the band around a primitive's boundary inside which f32 may
 /// legitimately disagree with f64: ~3u_f32 of ray direction error plus the polygons' 8u edge
 /// tolerance plus ~4u of sphere silhouette error, doubled: 32u_f32 = 1.9e-6 rad.
-pub const EDGE_BAND: f64 = 32.0 * (f32::EPSILON as f64 / 2.0);
+pub const EDGE_BAND: f64 = 32.0 * crate::real::U32;
 
 /// The outcome of one comparison.
 #[derive(Debug, Clone, Default, PartialEq)]

@@ -109,3 +109,7 @@ pub fn f32_up(x: f64) -> f32 {
     let f = x as f32;
     if (f as f64) < x { f.next_up() } else { f }
 }
+
+/// The f32 unit roundoff u = 2^-24 as an f64: the unit of every f32 error bound (the kernels,
+/// the tiles' margins, `--precision auto`'s limits, `compare`'s edge band).
+pub const U32: f64 = <f32 as Real>::UNIT_ROUNDOFF as f64;

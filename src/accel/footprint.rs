@@ -10,8 +10,7 @@ use crate::soa::Packed;
 use glam::DVec3;
 use rayon::prelude::*;
 
-/// f32 unit roundoff.
-pub(super) const U32: f64 = f32::EPSILON as f64 / 2.0;
+use crate::real::U32;
 /// Multiple of `u k` taken off a polygon's distance bound (derived: 24; see the module comment).
 pub(super) const GRAZING_U: f64 = 64.0;
 /// Relative margin taken off every polygon's `near` on top of the derived bounds.
@@ -25,7 +24,7 @@ pub(super) const NEAR_PLANE_REL: f64 = 1e-6;
 /// by a forward ray: ~1e3 times the kernels' angular tolerance.
 pub(super) const BEHIND_REL: f64 = 1e-3;
 /// Angular margin around every primitive, radians: twice (8u edge tolerance + 8u ray error).
-pub(super) const ANGLE_MARGIN: f64 = 32.0 * (f32::EPSILON as f64 / 2.0);
+pub(super) const ANGLE_MARGIN: f64 = 32.0 * U32;
 
 /// The screen geometry a footprint is measured in.
 pub(super) struct Screen {
