@@ -13,7 +13,8 @@ use crate::scene::{Scene, Shape, Shapes};
 use glam::DVec3;
 use rayon::prelude::*;
 
-/// One type's prepared primitives and their ids (ascending: file order).
+/// One type's prepared primitives and their ids: in file order, or in the order an acceleration
+/// structure rearranged them to (the BVH's leaves, the tiles' screen order).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Group<K> {
     /// Each primitive's constants record.
@@ -56,11 +57,45 @@ impl<K> Group<K> {
         self.id.push(other.id[i]);
     }
 
+    /// Rearranged to `order` (new position -> old index; [`Order`]), or kept with `None`.
+    pub fn permute(&mut self, order: Option<&Vec<u32>>)
+    where
+        K: Clone + Send + Sync,
+    {
+        if let Some(order) = order {
+            gather(&mut self.k, order);
+            gather(&mut self.id, order);
+        }
+    }
+
     fn map<L>(&self, f: impl Fn(&K) -> L) -> Group<L> {
         Group {
             k: self.k.iter().map(f).collect(),
             id: self.id.clone(),
         }
+    }
+}
+
+/// A rearrangement of the stores, per kind (spheres, triangles, quads): element `j` of a kind's
+/// list is the old index of the primitive that moves to index `j`; `None` keeps the kind as it
+/// is. The tiles order the stores the way the render reaches them (`accel::tiles`).
+pub type Order = [Option<Vec<u32>>; 3];
+
+/// `col` rearranged so that its element `j` is its old element `order[j]`, on all threads;
+/// only this column exists twice meanwhile.
+fn gather<T: Clone + Send + Sync>(col: &mut Vec<T>, order: &[u32]) {
+    let old = std::mem::take(col);
+    *col = order.par_iter().map(|&i| old[i as usize].clone()).collect();
+}
+
+/// [`gather`] for several columns of one length, through one scratch buffer that each column's
+/// old storage becomes in turn: one allocation (and one first touch of its pages) for all.
+fn gather_all<'c>(cols: impl IntoIterator<Item = &'c mut Vec<f32>>, order: &[u32]) {
+    let mut scratch: Vec<f32> = Vec::with_capacity(order.len());
+    for col in cols {
+        scratch.clear();
+        scratch.par_extend(order.par_iter().map(|&i| col[i as usize]));
+        std::mem::swap(col, &mut scratch);
     }
 }
 
@@ -98,6 +133,13 @@ impl Prepared<f64> {
             }
         }
         p
+    }
+
+    /// Rearranged to `order`.
+    pub fn permute(&mut self, order: &Order) {
+        self.spheres.permute(order[0].as_ref());
+        self.triangles.permute(order[1].as_ref());
+        self.quads.permute(order[2].as_ref());
     }
 
     /// The same constants rounded to `T`.
@@ -277,6 +319,21 @@ impl Spheres {
         self.id.extend_from_slice(&o.id);
     }
 
+    /// Rearranged to `order` ([`Order`]), or kept with `None`.
+    fn permute(&mut self, order: Option<&Vec<u32>>) {
+        let Some(order) = order else { return };
+        let cols = [
+            &mut self.ocx,
+            &mut self.ocy,
+            &mut self.ocz,
+            &mut self.r2,
+            &mut self.c,
+            &mut self.id,
+        ];
+        gather_all(cols, order);
+        gather(&mut self.inside, order);
+    }
+
     /// Sphere `i`'s constants, gathered from the columns.
     #[inline(always)]
     pub fn get(&self, i: usize) -> SphereK<f32> {
@@ -364,6 +421,13 @@ impl<const N: usize> Polygons<N> {
         self.id.extend_from_slice(&other.id);
     }
 
+    /// Rearranged to `order` ([`Order`]), or kept with `None`.
+    fn permute(&mut self, order: Option<&Vec<u32>>) {
+        let Some(order) = order else { return };
+        let cols = self.n.iter_mut().flatten().chain(&mut self.nrm);
+        gather_all(cols.chain([&mut self.p, &mut self.id]), order);
+    }
+
     /// Polygon `i`'s constants, gathered from the columns.
     #[inline(always)]
     pub fn get(&self, i: usize) -> PolyK<f32, N> {
@@ -442,6 +506,13 @@ impl Packed {
                 }
             }
         }
+    }
+
+    /// Rearranged to `order`.
+    pub fn permute(&mut self, order: &Order) {
+        self.spheres.permute(order[0].as_ref());
+        self.triangles.permute(order[1].as_ref());
+        self.quads.permute(order[2].as_ref());
     }
 
     /// The stores of prepared f64 constants, rounded to f32.

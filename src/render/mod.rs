@@ -100,8 +100,9 @@ impl PacketScene {
                 }
             }
             Accel::Tiles => {
-                let packed = Packed::from_scene(scene, eye);
-                let tiles = Tiles::new(scene, &packed, camera);
+                let mut packed = Packed::from_scene(scene, eye);
+                let (tiles, order) = Tiles::new(scene, &packed, camera);
+                packed.permute(&order);
                 PacketScene {
                     packed,
                     bvh: None,
@@ -390,7 +391,9 @@ pub fn prepare_f64(
     let p = Prepared::new(scene, camera.eye);
     match accel.resolve(scene.shapes.len()) {
         Accel::Tiles => {
-            let tiles = Tiles::new(scene, &Packed::new(&p), camera);
+            let (tiles, order) = Tiles::new(scene, &Packed::new(&p), camera);
+            let mut p = p;
+            p.permute(&order);
             (p, Structure::Tiles(Box::new(tiles)))
         }
         Accel::Bvh => {

@@ -70,8 +70,9 @@ fn kernels_accept_rays_only_inside_rectangles_and_beyond_near() {
         let eye = DVec3::new(0.3, 0.2, 1.0);
         let scene = scene(seed, eye, DVec3::new(0.0, 0.0, -3.0), fov);
         let camera = Camera::new(&scene.camera, fov, 97, 61);
-        let packed = Packed::new(&Prepared::new(&scene, eye));
-        let tiles = Tiles::new(&scene, &packed, &camera);
+        let mut packed = Packed::new(&Prepared::new(&scene, eye));
+        let (tiles, order) = Tiles::new(&scene, &packed, &camera);
+        packed.permute(&order);
         let mut first: std::collections::HashMap<u32, Entry> = Default::default();
         for e in &tiles.entries {
             first.entry(e.prim).or_insert(*e);
@@ -142,8 +143,9 @@ fn split_tile_keeps_the_entries_reaching_each_packet() {
     let scene = scene(4, eye, DVec3::new(0.0, 0.0, -3.0), 70.0);
     let (w, h): (usize, usize) = (101, 45);
     let camera = Camera::new(&scene.camera, 70.0, w as u32, h as u32);
-    let packed = Packed::new(&Prepared::new(&scene, eye));
-    let tiles = Tiles::new(&scene, &packed, &camera);
+    let mut packed = Packed::new(&Prepared::new(&scene, eye));
+    let (tiles, order) = Tiles::new(&scene, &packed, &camera);
+    packed.permute(&order);
     let tables = camera.tables::<f32>(BLOCK_W as u32, BLOCK_H as u32);
     let cones = PacketCones::new(&tables);
     let mut lists = PacketLists::default();
@@ -204,4 +206,111 @@ fn split_tile_keeps_the_entries_reaching_each_packet() {
         kept > 1000 && rect_only > 100 && culled > 100,
         "every case occurs: {kept} accepted, {rect_only} listed but missed, {culled} left out"
     );
+}
+
+/// The stores come back in screen order: a permutation of the originals per kind, and the
+/// primitives the lists name lie in row-major order of the first tile of their rectangles.
+#[test]
+fn stores_are_rearranged_to_screen_order() {
+    let eye = DVec3::new(0.3, 0.2, 1.0);
+    let scene = scene(5, eye, DVec3::new(0.0, 0.0, -3.0), 70.0);
+    let camera = Camera::new(&scene.camera, 70.0, 83, 57);
+    let original = Packed::new(&Prepared::new(&scene, eye));
+    let (tiles, order) = Tiles::new(&scene, &original, &camera);
+    let mut packed = original.clone();
+    packed.permute(&order);
+    let counts = [
+        original.spheres.len(),
+        original.triangles.len(),
+        original.quads.len(),
+    ];
+    let ids = |p: &Packed| {
+        [
+            p.spheres.id.clone(),
+            p.triangles.id.clone(),
+            p.quads.id.clone(),
+        ]
+    };
+    let (before, after) = (ids(&original), ids(&packed));
+    for kind in 0..3 {
+        let order = order[kind]
+            .as_ref()
+            .expect("random primitives are out of screen order");
+        let mut seen = order.clone();
+        seen.sort_unstable();
+        assert_eq!(
+            seen,
+            (0..counts[kind] as u32).collect::<Vec<_>>(),
+            "kind {kind}"
+        );
+        for (new, &old) in order.iter().enumerate() {
+            assert_eq!(after[kind][new], before[kind][old as usize]);
+        }
+    }
+    let first_triangle = order[1].as_ref().map_or(0, |o| o[0] as usize);
+    assert_eq!(
+        packed.triangles.get(0),
+        original.triangles.get(first_triangle)
+    );
+    // first tile of each listed primitive, by kind and new index
+    let mut first: std::collections::BTreeMap<(u32, u32), u32> = Default::default();
+    for e in &tiles.entries {
+        let [tx, ty, ..] = e.tiles().expect("listed entries are on screen");
+        let key = ty * tiles.cols as u32 + tx;
+        first.insert((e.prim >> KIND_SHIFT, e.prim & INDEX_MASK), key);
+    }
+    assert!(first.len() > 20, "the scene lists primitives of every kind");
+    for kind in 0..3 {
+        let keys: Vec<u32> = first
+            .iter()
+            .filter(|((k, _), _)| *k == kind)
+            .map(|(_, &key)| key)
+            .collect();
+        assert!(
+            keys.windows(2).all(|w| w[0] <= w[1]),
+            "kind {kind}: {keys:?}"
+        );
+    }
+}
+
+/// Small triangles already in screen order (a strip across the image, left to right, as a
+/// subdivided mesh lists its faces) are kept as they are; the same triangles in a scattered
+/// order are rearranged.
+#[test]
+fn stores_already_in_screen_order_are_kept() {
+    let eye = DVec3::ZERO;
+    let strip: Vec<Shape> = (0..200)
+        .map(|i| {
+            let c = DVec3::new(-4.0 + 0.04 * i as f64, 0.0, -5.0);
+            Shape::Triangle([
+                c,
+                c + DVec3::new(0.03, 0.0, 0.0),
+                c + DVec3::new(0.0, 0.03, 0.0),
+            ])
+        })
+        .collect();
+    // every 37th of 200 (coprime): neighbours in the list lie far apart on screen
+    let scattered: Vec<Shape> = (0..200).map(|i| strip[i * 37 % 200]).collect();
+    for (shapes, kept) in [(strip, true), (scattered, false)] {
+        let scene = Scene {
+            source: "strip.sc".into(),
+            camera: CameraSpec {
+                eye,
+                look: DVec3::new(0.0, 0.0, -1.0),
+                up: DVec3::Y,
+                fov_deg: Some(90.0),
+            },
+            shapes: shapes.into(),
+            warnings: Vec::new(),
+        };
+        let camera = Camera::new(&scene.camera, 90.0, 640, 64);
+        let packed = Packed::new(&Prepared::new(&scene, eye));
+        let (_, order) = Tiles::new(&scene, &packed, &camera);
+        assert_eq!(
+            order[1].is_none(),
+            kept,
+            "{}",
+            if kept { "strip" } else { "scattered" }
+        );
+    }
 }
