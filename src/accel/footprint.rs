@@ -25,6 +25,10 @@ pub(super) const NEAR_PLANE_REL: f64 = 1e-6;
 pub(super) const BEHIND_REL: f64 = 1e-3;
 /// Angular margin around every primitive, radians: twice (8u edge tolerance + 8u ray error).
 pub(super) const ANGLE_MARGIN: f64 = 32.0 * U32;
+/// Margin of a projected point, pixels, for the f64 rounding of the projection itself (a few
+/// units of 1e-16 relative to coordinates of at most ~1e9 pixels in front of the near plane:
+/// under 1e-6 pixels): 1e-3 is far beyond it.
+pub(super) const PROJECTION_PX: f64 = 1e-3;
 
 /// The screen geometry a footprint is measured in.
 pub(super) struct Screen {
@@ -44,7 +48,7 @@ impl Screen {
     pub(super) fn new(c: &Camera) -> Screen {
         let stretch = 1.0 + c.half_w * c.half_w + c.half_h * c.half_h;
         let (w, h) = (c.width as f64, c.height as f64);
-        let px = |half: f64, n: f64| ANGLE_MARGIN * stretch / (2.0 * half / n) + 1.0;
+        let px = |half: f64, n: f64| ANGLE_MARGIN * stretch / (2.0 * half / n) + PROJECTION_PX;
         Screen {
             eye: c.eye,
             f: c.f,
@@ -94,14 +98,15 @@ impl Screen {
         if unbounded {
             return Some(self.whole());
         }
+        // the pixels whose centres (pixel x at coordinate x) lie within the margin
         let (mx, my) = self.margin;
         let (x0, x1) = (
-            (x0 - mx).floor().max(0.0),
-            (x1 + mx).ceil().min(self.w - 1.0),
+            (x0 - mx).ceil().max(0.0),
+            (x1 + mx).floor().min(self.w - 1.0),
         );
         let (y0, y1) = (
-            (y0 - my).floor().max(0.0),
-            (y1 + my).ceil().min(self.h - 1.0),
+            (y0 - my).ceil().max(0.0),
+            (y1 + my).floor().min(self.h - 1.0),
         );
         // NaN compares false: a NaN rectangle is treated as off screen only if the comparisons
         // say so; guard explicitly so a NaN gives the whole image instead.
@@ -274,14 +279,17 @@ fn closest_to_origin(a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
 ///
 /// Derivation. A packet's rays go through the points `a = f + sx r + sy u` of the image plane
 /// at distance 1 (`f`, `r`, `u` orthonormal, so `|a| >= 1`), with `sx`, `sy` its pixels' screen
-/// coordinates from the f32 ray tables the kernel reads. All lie within `R` of the packet's
-/// centre point `c` (`R`: the largest half diagonal of a packet's `sx`, `sy` box over the
-/// image). For a unit edge normal `n`, `n . a <= n . c + R`, and the kernel accepts a ray only
-/// when `n . a / |a| >= -eps` (8u edge tolerance) to within its rounding, with
-/// `|a| <= A + R` (`A`: the largest `|a|` over the image). So when
-/// `n . c < -(R + (eps + m) (A + R))`, no ray of the packet is accepted by that edge: `m` =
-/// [`ANGLE_MARGIN`] (32u) covers the kernel's f32 dot product and ray (~8u) and this test's
-/// own f32 centre and dot product (~6u A).
+/// coordinates from the f32 ray tables the kernel reads. They lie in the rectangle
+/// `c + x r + y u`, `|x| <= hx`, `|y| <= hy`, around the packet's centre point `c` (`hx`, `hy`:
+/// the largest half widths of a packet's `sx` and `sy` ranges over the image; `R`, the half
+/// diagonal `hypot(hx, hy)`). For a unit edge normal `n`, a linear function is largest over a
+/// rectangle at a corner: `n . a <= n . c + hx |n . r| + hy |n . u|` (at most `n . c + R`). The
+/// kernel accepts a ray only when `n . a / |a| >= -eps` (8u edge tolerance) to within its
+/// rounding, with `|a| <= A + R` (`A`: the largest `|a|` over the image). So when
+/// `n . c < -(hx |n . r| + hy |n . u| + (eps + m) (A + R))`, no ray of the packet is accepted
+/// by that edge: `m` = [`ANGLE_MARGIN`] (32u) covers the kernel's f32 dot product and ray
+/// (~8u) and this test's own f32 centre and dot products (~6u A); the f32 sum of the slack's
+/// three positive terms is rounded up by a relative 1e-5.
 ///
 /// Spheres: the kernel meets a ray `d` only when the sphere's centre lies within `r + m |oc|`
 /// of its line (the f32 silhouette errs by ~4u |oc|; see `reaches_sphere`), `|oc x d| <=
@@ -291,8 +299,13 @@ fn closest_to_origin(a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
 /// the right side exceeds `|oc| A >= |oc x c|`: never left out. Equal ids and depths to the
 /// whole list follow (tests/accel.rs: tiles == none, bit for bit).
 pub(crate) struct PacketCones {
-    /// `-(R + (eps + m) (A + R))`, rounded down.
-    limit: f32,
+    /// `(eps + m) (A + R)`, rounded up.
+    tol: f32,
+    /// `hx` and `hy`, rounded up.
+    half: [f32; 2],
+    /// The tables' right and up vectors.
+    r: [f32; 3],
+    u: [f32; 3],
     /// `R` and `A`, rounded up.
     rad: f32,
     far: f32,
@@ -308,7 +321,8 @@ impl PacketCones {
                 .map(|i| (f64::from(v[i + n - 1]) - f64::from(v[i])).abs() / 2.0)
                 .fold(0.0, f64::max)
         };
-        let rad = half(&t.sx, BLOCK_W).hypot(half(&t.sy, BLOCK_H));
+        let (hx, hy) = (half(&t.sx, BLOCK_W), half(&t.sy, BLOCK_H));
+        let rad = hx.hypot(hy);
         let (f, r, u) = (t.f.map(f64::from), t.r.map(f64::from), t.u.map(f64::from));
         let ends = |v: &[f32]| [v[0], v[v.len() - 1]].map(f64::from);
         let mut far: f64 = 1.0;
@@ -319,7 +333,10 @@ impl PacketCones {
             }
         }
         PacketCones {
-            limit: crate::real::f32_down(-(rad + (eps + ANGLE_MARGIN) * (far + rad))),
+            tol: crate::real::f32_up((eps + ANGLE_MARGIN) * (far + rad)),
+            half: [hx, hy].map(crate::real::f32_up),
+            r: t.r,
+            u: t.u,
             rad: crate::real::f32_up(rad),
             far: crate::real::f32_up(far),
         }
@@ -367,13 +384,15 @@ impl PacketCones {
         i: usize,
     ) -> u32 {
         use wide::f32x8;
-        let limit = f32x8::splat(self.limit);
         let mut out = f32x8::ZERO;
         for edge in n {
-            let dot = c[0] * f32x8::splat(edge[0][i])
-                + c[1] * f32x8::splat(edge[1][i])
-                + c[2] * f32x8::splat(edge[2][i]);
-            out |= dot.simd_lt(limit);
+            let e = [edge[0][i], edge[1][i], edge[2][i]];
+            let along = |v: [f32; 3]| (e[0] * v[0] + e[1] * v[1] + e[2] * v[2]).abs();
+            let [hx, hy] = self.half;
+            let slack = (hx * along(self.r) + hy * along(self.u) + self.tol) * (1.0 + 1e-5);
+            let dot =
+                c[0] * f32x8::splat(e[0]) + c[1] * f32x8::splat(e[1]) + c[2] * f32x8::splat(e[2]);
+            out |= dot.simd_lt(f32x8::splat(-slack));
         }
         !out.to_bitmask() & 0xFF
     }

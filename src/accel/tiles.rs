@@ -14,8 +14,10 @@
 //! - Margin. The kernels accept rays up to `edge_eps` = 8u radians outside an edge plane, and
 //!   the f32 ray directions err by a few u: 32u (1.9e-6 rad) covers both twice over. An angle
 //!   `a` moves the screen coordinate by at most `a (1 + s^2)` (s = tan of the angle off the
-//!   axis, at most `half_w^2 + half_h^2` squared), which is turned into pixels and rounded out,
-//!   plus one whole pixel for the rounding of the projection itself (f64, far below a pixel).
+//!   axis, at most `half_w^2 + half_h^2` squared), which is turned into pixels, plus 1e-3 pixel
+//!   for the f64 rounding of the projection itself (under 1e-6 pixel). The rectangle holds the
+//!   pixels whose centres lie within that margin of the box: a primitive between two pixel
+//!   centres covers none.
 //! - Tiles of the rectangle that no accepted ray can reach are left out: a polygon's where all
 //!   four corner pixel rays of the tile lie outside one of its edge planes, a sphere's where
 //!   its centre lies more than `r` outside one of the tile's side planes (`footprint.rs`).
