@@ -1,14 +1,12 @@
 //! Where a primitive can appear on screen, for the tiles (`tiles.rs`, whose module comment
 //! derives every bound used here): the screen geometry, a primitive's conservative pixel
-//! rectangle and its `near` distance bound, the corner rays of each tile, which leave out
-//! the tiles of a rectangle that the kernel cannot reach, and the centre rays of each tile's
-//! packets ([`PacketCones`]), which leave out of a packet's list what none of its rays meets.
+//! rectangle and its `near` distance bound, and the centre rays of each tile's packets
+//! ([`PacketCones`]), which leave out of a tile's entry the packets none of whose rays the
+//! kernel can accept.
 
 use super::tiles::{TILE_H, TILE_W};
 use crate::camera::Camera;
-use crate::soa::Packed;
 use glam::DVec3;
-use rayon::prelude::*;
 
 use crate::real::U32;
 /// Multiple of `u k` taken off a polygon's distance bound (derived: 24; see the module comment).
@@ -124,98 +122,6 @@ impl Screen {
 /// `near` (margins already taken) rounded down to f32.
 pub(super) fn near_f32(near: f64) -> f32 {
     crate::real::f32_down(near.max(0.0))
-}
-
-/// The corner pixel rays of every tile, to drop the tiles of a polygon's rectangle that no ray
-/// the kernel accepts can reach. The rays of a tile's pixels are the convex combinations of its
-/// four corner pixels' rays (`camera.rs`: the screen position is affine in x and in y), so if
-/// every corner ray lies more than `a` radians outside an edge plane, so does every pixel ray
-/// (`d = sum w_k c_k`, `w_k >= 0`: `d . n < -a sum w_k |c_k| <= -a |d|`). The kernel accepts a
-/// ray up to 8u outside an edge plane, its f32 ray errs by a few u and its f32 dot product by
-/// ~3u: `ANGLE_MARGIN` (32u) covers all three. Computed in f64 with the kernel's own f32 edge
-/// normals. Proven by tests/accel.rs (tiles == none, bit for bit).
-pub(super) struct TileFrusta {
-    cols: usize,
-    /// Per tile (row-major), the unit rays of its four corner pixels (clipped to the image):
-    /// (x0, y0), (x1, y0), (x0, y1), (x1, y1).
-    corners: Vec<[DVec3; 4]>,
-}
-
-impl TileFrusta {
-    pub(super) fn new(c: &Camera) -> TileFrusta {
-        let (w, h) = (c.width as usize, c.height as usize);
-        let (cols, rows) = (w.div_ceil(TILE_W), h.div_ceil(TILE_H));
-        let sx: Vec<f64> = (0..c.width).map(|x| c.sx::<f64>(x)).collect();
-        let sy: Vec<f64> = (0..c.height).map(|y| c.sy::<f64>(y)).collect();
-        let ray = |x: usize, y: usize| (c.f + sx[x] * c.r + sy[y] * c.u).normalize();
-        let corners = (0..cols * rows)
-            .into_par_iter()
-            .map(|t| {
-                let (x0, y0) = (t % cols * TILE_W, t / cols * TILE_H);
-                let (x1, y1) = ((x0 + TILE_W - 1).min(w - 1), (y0 + TILE_H - 1).min(h - 1));
-                [ray(x0, y0), ray(x1, y0), ray(x0, y1), ray(x1, y1)]
-            })
-            .collect();
-        TileFrusta { cols, corners }
-    }
-
-    /// The unit rays of tile `(tx, ty)`'s four corner pixels.
-    #[inline]
-    fn corners(&self, (tx, ty): (usize, usize)) -> [DVec3; 4] {
-        self.corners[ty * self.cols + tx]
-    }
-
-    /// Whether primitive `i` of kind `kind` (0 sphere, 1 triangle, 2 quad) may be accepted by
-    /// a ray of tile `tile`: a polygon unless the tile lies wholly outside one of its edge
-    /// planes, a sphere unless it lies wholly outside one of the tile's four side planes.
-    pub(super) fn reaches(
-        &self,
-        packed: &Packed,
-        kind: u32,
-        i: usize,
-        tile: (usize, usize),
-    ) -> bool {
-        match kind {
-            1 => self.reaches_polygon(&packed.triangles.n, i, tile),
-            2 => self.reaches_polygon(&packed.quads.n, i, tile),
-            _ => self.reaches_sphere(&packed.spheres, i, tile),
-        }
-    }
-
-    /// A ray meets a sphere only within `r` of its centre; the tile's rays all lie on the inner
-    /// side of the planes through the eye and two neighbouring corner rays, so a sphere whose
-    /// centre is more than `r` (plus `ANGLE_MARGIN |oc|`, for the f32 silhouette's ~4u |oc| and
-    /// the rays' error) outside one of them is met by none. The eye inside the sphere always
-    /// passes (`|oc| <= r`).
-    fn reaches_sphere(&self, s: &crate::soa::Spheres, i: usize, tile: (usize, usize)) -> bool {
-        let [c0, c1, c2, c3] = self.corners(tile);
-        let oc = DVec3::new(s.ocx[i] as f64, s.ocy[i] as f64, s.ocz[i] as f64);
-        let r = (s.r2[i] as f64).sqrt();
-        let slack = r + ANGLE_MARGIN * oc.length();
-        let centre = c0 + c1 + c2 + c3;
-        // the four sides, in order around the tile: top, right, bottom, left
-        [(c0, c1), (c1, c3), (c3, c2), (c2, c0)]
-            .iter()
-            .all(|&(a, b)| {
-                let n = a.cross(b);
-                let n = if n.dot(centre) < 0.0 { -n } else { n };
-                let len = n.length();
-                len == 0.0 || oc.dot(n) / len >= -slack
-            })
-    }
-
-    fn reaches_polygon<const N: usize>(
-        &self,
-        n: &[[Vec<f32>; 3]; N],
-        i: usize,
-        tile: (usize, usize),
-    ) -> bool {
-        let corners = self.corners(tile);
-        n.iter().all(|edge| {
-            let m = DVec3::new(edge[0][i] as f64, edge[1][i] as f64, edge[2][i] as f64);
-            corners.iter().any(|c| c.dot(m) >= -ANGLE_MARGIN)
-        })
-    }
 }
 
 /// The rectangle and `near` of a convex polygon (see the module comment).

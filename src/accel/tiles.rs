@@ -18,16 +18,18 @@
 //!   for the f64 rounding of the projection itself (under 1e-6 pixel). The rectangle holds the
 //!   pixels whose centres lie within that margin of the box: a primitive between two pixel
 //!   centres covers none.
-//! - Tiles of the rectangle that no accepted ray can reach are left out: a polygon's where all
-//!   four corner pixel rays of the tile lie outside one of its edge planes, a sphere's where
-//!   its centre lies more than `r` outside one of the tile's side planes (`footprint.rs`).
+//! - Each entry names the tile's packets (4x2 pixels) that the rectangle overlaps, less those
+//!   whose rays all lie outside one of a polygon's edge planes or all pass too far from a
+//!   sphere's centre (`footprint::PacketCones`, derived there); a tile where no packet is left
+//!   gets no entry. A packet walks only its own entries.
 //! - Anything that reaches to or behind the eye's plane (a vertex or the cube within
 //!   `NEAR_PLANE_REL` of it, the eye inside a sphere) gets the whole image: its projection is
 //!   unbounded. Rectangles are clipped to the image; one wholly outside it is dropped.
 //!
-//! Binning is a parallel counting sort: per-primitive rectangles in parallel, per-tile counts
-//! with atomic adds, a prefix sum, a parallel scatter, then each tile's list sorted by
-//! (near distance, primitive) in parallel, so the order is the same at any thread count.
+//! Binning (`tiles/bin.rs`) is a parallel counting sort: per-primitive rectangles in parallel,
+//! per-tile counts with atomic adds, a prefix sum, a parallel scatter, then each tile's list
+//! sorted by (near distance, primitive) in parallel, so the order is the same at any thread
+//! count. An entry's packets are found in setup, once, not per frame.
 //!
 //! Screen order: the stores are rearranged so that primitives whose rectangles start in the same
 //! tile lie together, tiles in row-major order (the order a strip of the render walks them).
@@ -60,10 +62,11 @@
 //!   `u |oc|^2`, so `q <= |oc| + r + 7e-4 |oc|` and `t >= (|oc| - r)(1 - 7e-4)`; lanecast takes
 //!   2e-3.
 //!
-//! `kernels_accept_rays_only_inside_rectangles_and_beyond_near` checks `t >= near` ray by ray.
+//! `kernels_accept_rays_only_in_their_packets_and_beyond_near` checks the packets and
+//! `t >= near` ray by ray.
 //!
-//! The screen geometry, the rectangles, the `near` bounds and the tiles' corner rays are
-//! computed in `footprint.rs`, from the derivations above.
+//! The screen geometry, the rectangles, the `near` bounds and the packets' cones are computed
+//! in `footprint.rs`, from the derivations above.
 //!
 //! Precision assumed: f32 kernels fed by f64 setup (as `soa`); the bounds above hold for any
 //! scene `scene::validate::f32_range` accepts. Known to cost, not to fail: a primitive crossing
@@ -73,23 +76,15 @@
 //! crossing the eye's plane, the eye inside a sphere, rectangles clipped at the border).
 
 use super::bvh::ranges_x4d;
-use super::footprint::{
-    PacketCones, SPHERE_MARGIN, Screen, TileFrusta, near_f32, polygon_footprint,
-};
-use crate::camera::{Camera, RayTables};
 use crate::kernel::methods::wide64::Hit4d;
 use crate::kernel::packet::{BLOCK_H, BLOCK_W};
 use crate::kernel::polygon::polygon_lanes_all;
-#[cfg(test)]
-use crate::kernel::polygon::polygon_x8;
 use crate::kernel::scalar::ranges_x1;
 use crate::kernel::sphere::sphere_lanes_all;
 use crate::kernel::{Hit, Hit8};
 use crate::real::{Real, V3};
+use crate::soa::Packed;
 use crate::soa::Records;
-use crate::soa::{Order, Packed};
-use rayon::prelude::*;
-use std::sync::atomic::{AtomicU32, Ordering};
 use wide::{f32x8, f64x4};
 
 /// Tile width in pixels: two packets of 4x2. Measured against 16 and 32 (README, "Acceleration"):
@@ -112,24 +107,10 @@ struct Entry {
     near: f32,
     /// Kind (top two bits) and index into that kind's packed store.
     prim: u32,
-    /// Pixel rectangle the primitive may cover, inclusive: x0, y0, x1, y1.
-    rect: [u16; 4],
-}
-
-/// The rectangle of a primitive that covers no pixel (x0 > x1): binned nowhere.
-const OFF_SCREEN: [u16; 4] = [1, 1, 0, 0];
-
-impl Entry {
-    /// The tiles the entry's rectangle touches, inclusive, or `None` when it is off screen.
-    fn tiles(&self) -> Option<[u32; 4]> {
-        let [x0, y0, x1, y1] = self.rect.map(u32::from);
-        (x0 <= x1).then_some([
-            x0 / TILE_W as u32,
-            y0 / TILE_H as u32,
-            x1 / TILE_W as u32,
-            y1 / TILE_H as u32,
-        ])
-    }
+    /// The tile's packets (bits, packet `k` at column `k % 2`, row `k / 2`) whose rays the
+    /// kernel may accept: those the primitive's rectangle overlaps, less those `PacketCones`
+    /// finds out of reach.
+    packets: u8,
 }
 
 /// Per-tile lists of primitives, nearest first.
@@ -142,138 +123,6 @@ pub struct Tiles {
 }
 
 impl Tiles {
-    /// Bins the primitives of `packed` (whose ids index `scene.shapes`) for `camera`. The lists
-    /// name primitives in screen order, which the stores must then be rearranged to
-    /// (`Packed::permute` with the order returned; see "Screen order" above).
-    pub fn new(scene: &crate::scene::Scene, packed: &Packed, camera: &Camera) -> (Tiles, Order) {
-        let screen = Screen::new(camera);
-        let (w, h) = (camera.width as usize, camera.height as usize);
-        let (cols, rows) = (w.div_ceil(TILE_W), h.div_ceil(TILE_H));
-        let eye = camera.eye;
-        let footprint = |kind: u32, index: usize, id: f32| -> Entry {
-            let shape = scene.shapes.get(id as usize);
-            let (rect, near) = match shape {
-                crate::scene::Shape::Sphere { center, radius } => {
-                    let oc = center - eye;
-                    let dist = oc.length();
-                    let rect = if dist <= radius {
-                        Some(screen.whole())
-                    } else {
-                        let (c, r) = ((screen.r, screen.u, screen.f), radius);
-                        let corners = (0..8).map(|i| {
-                            let s = |bit: usize| if i >> bit & 1 == 1 { r } else { -r };
-                            oc + c.0 * s(0) + c.1 * s(1) + c.2 * s(2)
-                        });
-                        screen.rect(corners)
-                    };
-                    (rect, (dist - radius).max(0.0) * (1.0 - SPHERE_MARGIN))
-                }
-                crate::scene::Shape::Triangle(v) => {
-                    polygon_footprint(&screen, &v, packed.triangles.p[index])
-                }
-                crate::scene::Shape::Quad(v) => {
-                    polygon_footprint(&screen, &v, packed.quads.p[index])
-                }
-            };
-            Entry {
-                near: near_f32(near),
-                prim: kind << KIND_SHIFT | index as u32,
-                rect: rect.unwrap_or(OFF_SCREEN),
-            }
-        };
-        // Every primitive's entry (rectangle and near bound), in parallel.
-        let mut prints: Vec<Entry> = Vec::new();
-        prints.par_extend(
-            (0..packed.spheres.len())
-                .into_par_iter()
-                .map(|i| footprint(SPHERE, i, packed.spheres.id[i])),
-        );
-        prints.par_extend(
-            (0..packed.triangles.len())
-                .into_par_iter()
-                .map(|i| footprint(TRIANGLE, i, packed.triangles.id[i])),
-        );
-        prints.par_extend(
-            (0..packed.quads.len())
-                .into_par_iter()
-                .map(|i| footprint(QUAD, i, packed.quads.id[i])),
-        );
-        let kinds = [packed.spheres.len(), packed.triangles.len()];
-        let order = screen_order(&mut prints, kinds, cols, cols * rows);
-        // The tiles of an entry's rectangle that its kernel can reach: for a polygon, not the
-        // tiles whose four corner pixel rays all lie outside one of its edge planes.
-        let frusta = &TileFrusta::new(camera);
-        let old_index = |e: &Entry| {
-            let kind = e.prim >> KIND_SHIFT;
-            let index = (e.prim & INDEX_MASK) as usize;
-            order[kind as usize]
-                .as_ref()
-                .map_or(index, |o| o[index] as usize)
-        };
-        let covered = |e: &Entry| {
-            let e = *e;
-            let old = old_index(&e);
-            let [tx0, ty0, tx1, ty1] = e.tiles().unwrap_or([1, 1, 0, 0]);
-            // a rectangle within one tile: the primitive projects into it, nothing to drop
-            let single = tx0 == tx1 && ty0 == ty1;
-            (ty0..=ty1)
-                .flat_map(move |ty| (tx0..=tx1).map(move |tx| (tx as usize, ty as usize)))
-                .filter(move |&tile| {
-                    single || frusta.reaches(packed, e.prim >> KIND_SHIFT, old, tile)
-                })
-                .map(move |(tx, ty)| ty * cols + tx)
-        };
-        // Counting sort: counts, prefix sum, scatter.
-        let counts: Vec<AtomicU32> = (0..cols * rows).map(|_| AtomicU32::new(0)).collect();
-        prints.par_iter().for_each(|e| {
-            for t in covered(e) {
-                counts[t].fetch_add(1, Ordering::Relaxed);
-            }
-        });
-        let mut start = Vec::with_capacity(cols * rows + 1);
-        let mut sum = 0u32;
-        start.push(0);
-        for c in &counts {
-            sum += c.load(Ordering::Relaxed);
-            start.push(sum);
-        }
-        let cursor: Vec<AtomicU32> = start[..cols * rows]
-            .iter()
-            .map(|&s| AtomicU32::new(s))
-            .collect();
-        let slots: Vec<AtomicU32> = (0..sum).map(|_| AtomicU32::new(0)).collect();
-        prints.par_iter().enumerate().for_each(|(i, e)| {
-            for t in covered(e) {
-                let at = cursor[t].fetch_add(1, Ordering::Relaxed);
-                slots[at as usize].store(i as u32, Ordering::Relaxed);
-            }
-        });
-        let mut entries: Vec<Entry> = slots
-            .into_par_iter()
-            .map(|s| prints[s.into_inner() as usize])
-            .collect();
-        drop(prints);
-        // Each tile nearest first; ties by kind and index, so the order is deterministic.
-        let mut lists: Vec<&mut [Entry]> = Vec::with_capacity(cols * rows);
-        let mut rest = entries.as_mut_slice();
-        for t in 0..cols * rows {
-            let (list, tail) = rest.split_at_mut((start[t + 1] - start[t]) as usize);
-            lists.push(list);
-            rest = tail;
-        }
-        lists.par_iter_mut().for_each(|l| {
-            l.sort_unstable_by(|a, b| a.near.total_cmp(&b.near).then(a.prim.cmp(&b.prim)))
-        });
-        (
-            Tiles {
-                cols,
-                start,
-                entries,
-            },
-            order,
-        )
-    }
-
     fn list(&self, tx: usize, ty: usize) -> &[Entry] {
         let t = ty * self.cols + tx;
         &self.entries[self.start[t] as usize..self.start[t + 1] as usize]
@@ -290,13 +139,13 @@ impl Tiles {
         d: &[f32x8; 3],
         hit: &mut Hit8,
     ) {
+        let block = packet_bits([x0, y0, bx1, by1], (tx * TILE_W, ty * TILE_H));
         for e in self.list(tx, ty) {
             // every active lane has a hit nearer than anything left in the list
             if !hit.t.simd_ge(f32x8::splat(e.near)).any() {
                 return;
             }
-            let [rx0, ry0, rx1, ry1] = e.rect.map(|v| v as usize);
-            if bx1 < rx0 || x0 > rx1 || by1 < ry0 || y0 > ry1 {
+            if u32::from(e.packets) & block == 0 {
                 continue;
             }
             test_entry(p, e, d, hit);
@@ -304,19 +153,11 @@ impl Tiles {
     }
 
     /// Splits tile (tx, ty)'s list into its eight 4x2 packets' lists (`PACKETS_X` columns,
-    /// `PACKETS_Y` rows, packet `k` at column `k % 2`, row `k / 2`), keeping the nearest-first
-    /// order: each packet then walks only the entries whose rectangles reach it, with no test
-    /// per entry (README, "Against Embree 3": growth before and after).
+    /// `PACKETS_Y` rows, packet `k` at column `k % 2`, row `k / 2`) by each entry's packets,
+    /// keeping the nearest-first order: each packet then walks only the entries that may reach
+    /// it, with no test per entry (README, "Against Embree 3": growth before and after).
     #[inline]
-    pub(crate) fn split_tile(
-        &self,
-        p: &Packed,
-        cones: &PacketCones,
-        tables: &RayTables<f32>,
-        (tx, ty): (usize, usize),
-        lists: &mut PacketLists,
-    ) {
-        let centres = PacketCones::centres(tables, (tx, ty));
+    pub(crate) fn split_tile(&self, (tx, ty): (usize, usize), lists: &mut PacketLists) {
         let list = self.list(tx, ty);
         let n = list.len();
         lists.tile = (tx, ty);
@@ -325,29 +166,10 @@ impl Tiles {
         if lists.index.len() < PACKETS * n {
             lists.index.resize(PACKETS * n, 0);
         }
-        let (ox, oy) = (tx * TILE_W, ty * TILE_H);
         for (i, e) in list.iter().enumerate() {
-            // A listed rectangle overlaps the tile: clamp it to the tile, in packets.
-            let [x0, y0, x1, y1] = e.rect.map(|v| v as usize);
-            let cx0 = x0.saturating_sub(ox).min(TILE_W - 1) / BLOCK_W;
-            let cx1 = (x1 - ox).min(TILE_W - 1) / BLOCK_W;
-            let ry0 = y0.saturating_sub(oy).min(TILE_H - 1) / BLOCK_H;
-            let ry1 = (y1 - oy).min(TILE_H - 1) / BLOCK_H;
-            // columns cx0..=cx1 (bits of a row), repeated for rows ry0..=ry1 (2 bits a row)
-            let cols = (1u32 << (cx1 + 1)) - (1 << cx0);
-            let rows = ((1u32 << (2 * ry1 + 2)) - (1 << (2 * ry0))) / 3;
-            let mut mask = cols * rows;
-            // and not the packets wholly outside one of a polygon's edge planes, or too far
-            // from a sphere (`PacketCones`)
-            let index = (e.prim & INDEX_MASK) as usize;
-            match e.prim >> KIND_SHIFT {
-                TRIANGLE => mask &= cones.polygon(&centres, &p.triangles.n, index),
-                QUAD => mask &= cones.polygon(&centres, &p.quads.n, index),
-                _ => mask &= cones.sphere(&centres, &p.spheres, index),
-            }
             for k in 0..PACKETS {
                 lists.index[k * n + lists.len[k]] = i as u32;
-                lists.len[k] += (mask >> k & 1) as usize;
+                lists.len[k] += (e.packets >> k & 1) as usize;
             }
         }
     }
@@ -453,12 +275,13 @@ impl Tiles {
         goes_on: impl Fn(&H, f32) -> bool,
         mut visit: impl FnMut(&mut H, u32, usize),
     ) {
-        for e in self.list(x0 / TILE_W, y / TILE_H) {
+        let (tx, ty) = (x0 / TILE_W, y / TILE_H);
+        let span = packet_bits([x0, y, x1, y], (tx * TILE_W, ty * TILE_H));
+        for e in self.list(tx, ty) {
             if !goes_on(hit, e.near) {
                 return;
             }
-            let [rx0, ry0, rx1, ry1] = e.rect.map(usize::from);
-            if x1 < rx0 || x0 > rx1 || y < ry0 || y > ry1 {
+            if u32::from(e.packets) & span == 0 {
                 continue;
             }
             visit(hit, e.prim >> KIND_SHIFT, (e.prim & INDEX_MASK) as usize);
@@ -473,67 +296,6 @@ fn only(kind: u32, i: usize) -> [std::ops::Range<usize>; 3] {
     let mut r = [0..0, 0..0, 0..0];
     r[kind as usize] = i..i + 1;
     r
-}
-
-/// The screen order of the primitives of `prints` (spheres, then `counts[1]` triangles, then
-/// quads, each kind in the stores' order): per kind, by the first tile of the entry's
-/// rectangle in row-major order (`tiles` tiles; off-screen entries last), in store order within
-/// a tile. A counting sort in parallel chunks (per-chunk counts, their offsets, a per-chunk pass
-/// placing each entry), the same at any thread count. Renumbers each entry's index to its new
-/// place, leaving `prints` where it is. A kind whose consecutive primitives mostly start within
-/// a tile of each other already is in screen order, near enough, and is kept as it is (`None`).
-fn screen_order(prints: &mut [Entry], counts: [usize; 2], cols: usize, tiles: usize) -> Order {
-    const CHUNK: usize = 1 << 16;
-    let first = |e: &Entry| {
-        e.tiles()
-            .map_or(tiles, |[tx, ty, ..]| ty as usize * cols + tx as usize)
-    };
-    let (spheres, rest) = prints.split_at_mut(counts[0]);
-    let (triangles, quads) = rest.split_at_mut(counts[1]);
-    [spheres, triangles, quads].map(|kind| {
-        // already coherent on screen (a subdivided mesh): reordering would cost more in setup
-        // than it saves in the render
-        let close = kind
-            .par_windows(2)
-            .filter(|w| match (w[0].tiles(), w[1].tiles()) {
-                (Some(a), Some(b)) => a[0].abs_diff(b[0]) <= 1 && a[1].abs_diff(b[1]) <= 1,
-                _ => false,
-            })
-            .count();
-        if 2 * close >= kind.len() {
-            return None;
-        }
-        let mut next: Vec<Vec<u32>> = kind
-            .par_chunks(CHUNK)
-            .map(|c| {
-                let mut n = vec![0u32; tiles + 1];
-                c.iter().for_each(|e| n[first(e)] += 1);
-                n
-            })
-            .collect();
-        // chunk j's first place in tile t: every entry of earlier tiles, then of tile t in
-        // earlier chunks
-        let mut at = 0u32;
-        for t in 0..=tiles {
-            for c in next.iter_mut() {
-                (c[t], at) = (at, at + c[t]);
-            }
-        }
-        kind.par_chunks_mut(CHUNK)
-            .zip(next)
-            .for_each(|(c, mut next)| {
-                for e in c {
-                    let t = first(e);
-                    e.prim = (e.prim & !INDEX_MASK) | next[t];
-                    next[t] += 1;
-                }
-            });
-        let mut order = vec![0u32; kind.len()];
-        for (old, e) in kind.iter().enumerate() {
-            order[(e.prim & INDEX_MASK) as usize] = old as u32;
-        }
-        Some(order)
-    })
 }
 
 /// Packets per tile: 4x2 blocks of the packet kernel.
@@ -570,6 +332,9 @@ fn test_entry(p: &Packed, e: &Entry, d: &[f32x8; 3], hit: &mut Hit8) -> f32x8 {
         }
     }
 }
+
+mod bin;
+use bin::packet_bits;
 
 #[cfg(test)]
 mod tests;

@@ -19,7 +19,6 @@ pub use method::Method;
 pub use renderer::{Options, Renderer};
 
 use crate::accel::bvh::{trace_bvh_x1, trace_bvh_x8};
-use crate::accel::footprint::PacketCones;
 use crate::accel::tiles::{PacketLists, TILE_H, TILE_W};
 use crate::accel::{Accel, Bvh, Tiles};
 use crate::camera::RayTables;
@@ -246,14 +245,13 @@ pub(crate) fn packet_blocks<const BW: usize>(
     match &p.tiles {
         // Tile by tile: each tile's list is split once into its packets' lists.
         Some(tiles) if BW == BLOCK_W => {
-            let cones = PacketCones::new(tables);
             for_each_strip(&mut frame, progress, |y_start, ids, depth| {
                 let rows = ids.len() / width;
                 let mut lists = PacketLists::default();
                 let (mut mine, walk) = (Vec::new(), walk());
                 for tx in 0..width.div_ceil(TILE_W) {
                     let tile = (tx, y_start / TILE_H);
-                    tiles.split_tile(&p.packed, &cones, tables, tile, &mut lists);
+                    tiles.split_tile(tile, &mut lists);
                     for by in (0..rows).step_by(BLOCK_H) {
                         for col in 0..TILE_W / BLOCK_W {
                             let bx = tx * TILE_W + col * BLOCK_W;

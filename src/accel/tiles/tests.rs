@@ -1,7 +1,11 @@
 //! The tiles' unit tests: binning, footprints and the per-packet split against brute force.
 
 use super::*;
+use crate::camera::Camera;
+use crate::kernel::packet::{BLOCK_H, BLOCK_W};
+use crate::kernel::polygon::polygon_x8;
 use crate::kernel::sphere::sphere_x8;
+use crate::real::V3;
 use crate::scene::{CameraSpec, Scene, Shape};
 use crate::soa::Prepared;
 use glam::DVec3;
@@ -62,10 +66,11 @@ fn scene(seed: u64, eye: DVec3, look: DVec3, fov: f64) -> Scene {
 }
 
 /// The claims the binning rests on, checked ray by ray against the kernels themselves: every
-/// pixel whose ray a primitive's f32 kernel accepts lies in that primitive's rectangle, and
-/// the distance it returns is at least the entry's `near`.
+/// pixel whose ray a primitive's f32 kernel accepts has that primitive in its tile's list with
+/// the pixel's packet among the entry's packets, and the distance it returns is at least the
+/// entry's `near`.
 #[test]
-fn kernels_accept_rays_only_inside_rectangles_and_beyond_near() {
+fn kernels_accept_rays_only_in_their_packets_and_beyond_near() {
     for (seed, fov) in [(1, 60.0), (2, 150.0), (3, 20.0)] {
         let eye = DVec3::new(0.3, 0.2, 1.0);
         let scene = scene(seed, eye, DVec3::new(0.0, 0.0, -3.0), fov);
@@ -73,10 +78,6 @@ fn kernels_accept_rays_only_inside_rectangles_and_beyond_near() {
         let mut packed = Packed::new(&Prepared::new(&scene, eye));
         let (tiles, order) = Tiles::new(&scene, &packed, &camera);
         packed.permute(&order);
-        let mut first: std::collections::HashMap<u32, Entry> = Default::default();
-        for e in &tiles.entries {
-            first.entry(e.prim).or_insert(*e);
-        }
         let tables = camera.tables::<f32>(1, 1);
         let mut accepted = 0;
         for y in 0..61 {
@@ -101,26 +102,19 @@ fn kernels_accept_rays_only_inside_rectangles_and_beyond_near() {
                         }
                         accepted += 1;
                         let prim = kind << KIND_SHIFT | i as u32;
-                        let e = first.get(&prim).unwrap_or_else(|| {
+                        let list = tiles.list(x / TILE_W, y / TILE_H);
+                        let e = list.iter().find(|e| e.prim == prim).unwrap_or_else(|| {
                             panic!(
-                                "seed {seed}: kind {kind} #{i} hit at ({x}, {y}), binned nowhere"
+                                "seed {seed}: kind {kind} #{i} hit at ({x}, {y}), not in its tile"
                             )
                         });
-                        let [x0, y0, x1, y1] = e.rect.map(|v| v as usize);
+                        let k = y % TILE_H / BLOCK_H * (TILE_W / BLOCK_W) + x % TILE_W / BLOCK_W;
                         assert!(
-                            (x0..=x1).contains(&x) && (y0..=y1).contains(&y),
-                            "seed {seed}: kind {kind} #{i} hit at ({x}, {y}) outside {:?}",
-                            e.rect
+                            e.packets >> k & 1 == 1,
+                            "seed {seed}: kind {kind} #{i} hit at ({x}, {y}), packet {k} not in {:08b}",
+                            e.packets
                         );
                         assert!(t >= e.near, "seed {seed}: t {t} < near {}", e.near);
-                        // the tile-frustum test kept it in this pixel's tile
-                        assert!(
-                            tiles
-                                .list(x / TILE_W, y / TILE_H)
-                                .iter()
-                                .any(|e| e.prim == prim),
-                            "seed {seed}: kind {kind} #{i} hit at ({x}, {y}), not in its tile"
-                        );
                     }
                 }
             }
@@ -132,11 +126,10 @@ fn kernels_accept_rays_only_inside_rectangles_and_beyond_near() {
     }
 }
 
-/// `split_tile` gives each packet the tile's entries whose rectangles reach that packet's
-/// pixels, in the tile's (nearest-first) order, less polygons whose edge planes have all its
-/// rays outside and spheres whose centres lie too far from its rays (`PacketCones`), and never leaves out a primitive that the packet kernel
-/// accepts on one of its rays; for every tile, including the partial ones at the right and
-/// bottom borders.
+/// `split_tile` gives each packet the tile's entries that name it, in the tile's (nearest-first)
+/// order, and no packet's list leaves out a primitive that the packet kernel accepts on one of
+/// its rays; for every tile, including the partial ones at the right and bottom borders. The
+/// packets are not the whole tile: entries listed in a tile leave some of its packets out.
 #[test]
 fn split_tile_keeps_the_entries_reaching_each_packet() {
     let eye = DVec3::new(0.3, 0.2, 1.0);
@@ -147,30 +140,29 @@ fn split_tile_keeps_the_entries_reaching_each_packet() {
     let (tiles, order) = Tiles::new(&scene, &packed, &camera);
     packed.permute(&order);
     let tables = camera.tables::<f32>(BLOCK_W as u32, BLOCK_H as u32);
-    let cones = PacketCones::new(&tables);
     let mut lists = PacketLists::default();
-    let (mut kept, mut rect_only, mut culled) = (0, 0, 0);
+    let (mut kept, mut listed_missed, mut left_out) = (0, 0, 0);
+    let all: Vec<u32> = [
+        (SPHERE, packed.spheres.len()),
+        (TRIANGLE, packed.triangles.len()),
+        (QUAD, packed.quads.len()),
+    ]
+    .iter()
+    .flat_map(|&(kind, n)| (0..n as u32).map(move |i| kind << KIND_SHIFT | i))
+    .collect();
     for ty in 0..h.div_ceil(TILE_H) {
         for tx in 0..w.div_ceil(TILE_W) {
-            tiles.split_tile(&packed, &cones, &tables, (tx, ty), &mut lists);
+            tiles.split_tile((tx, ty), &mut lists);
             let list = tiles.list(tx, ty);
             for k in 0..PACKETS {
                 let x0 = tx * TILE_W + k % (TILE_W / BLOCK_W) * BLOCK_W;
                 let y0 = ty * TILE_H + k / (TILE_W / BLOCK_W) * BLOCK_H;
-                let (x1, y1) = (x0 + BLOCK_W - 1, y0 + BLOCK_H - 1);
-                let by_rect: Vec<u32> = (0..list.len() as u32)
-                    .filter(|&i| {
-                        let [rx0, ry0, rx1, ry1] = list[i as usize].rect.map(usize::from);
-                        rx0 <= x1 && x0 <= rx1 && ry0 <= y1 && y0 <= ry1
-                    })
+                let named: Vec<u32> = (0..list.len() as u32)
+                    .filter(|&i| list[i as usize].packets >> k & 1 == 1)
                     .collect();
                 let got = &lists.index[k * lists.stride..][..lists.len[k]];
-                // in order, and a subset of the rectangle test's
-                let mut rest = by_rect.iter();
-                assert!(
-                    got.iter().all(|g| rest.any(|r| r == g)),
-                    "tile ({tx}, {ty})"
-                );
+                assert_eq!(got, &named[..], "tile ({tx}, {ty}) packet {k}");
+                left_out += list.len() - named.len();
                 if x0 >= w || y0 >= h {
                     continue;
                 }
@@ -179,44 +171,45 @@ fn split_tile_keeps_the_entries_reaching_each_packet() {
                     tables.dir_x1((x0 + l % BLOCK_W).min(w - 1), (y0 + l / BLOCK_W).min(h - 1))
                 });
                 let d: [f32x8; 3] = std::array::from_fn(|c| f32x8::new(dirs.map(|v| v[c])));
-                for &i in &by_rect {
-                    let e = list[i as usize];
-                    let idx = (e.prim & INDEX_MASK) as usize;
-                    let accepted = match e.prim >> KIND_SHIFT {
+                for &prim in &all {
+                    let idx = (prim & INDEX_MASK) as usize;
+                    let accepted = match prim >> KIND_SHIFT {
                         TRIANGLE => polygon_x8(&packed.triangles.get(idx), &d),
                         QUAD => polygon_x8(&packed.quads.get(idx), &d),
                         _ => sphere_x8(&packed.spheres.get(idx), &d),
                     }
                     .is_some_and(|(m, t)| (m & t.simd_gt(f32x8::ZERO)).any());
-                    let listed = got.contains(&i);
+                    let listed = got.iter().any(|&i| list[i as usize].prim == prim);
                     assert!(
                         listed || !accepted,
-                        "tile ({tx}, {ty}) packet {k} entry {i}"
+                        "tile ({tx}, {ty}) packet {k}: kind {} #{idx} accepted, not listed",
+                        prim >> KIND_SHIFT
                     );
                     match (listed, accepted) {
                         (true, true) => kept += 1,
-                        (true, false) => rect_only += 1,
-                        (false, _) => culled += 1,
+                        (true, false) => listed_missed += 1,
+                        _ => {}
                     }
                 }
             }
         }
     }
     assert!(
-        kept > 1000 && rect_only > 100 && culled > 100,
-        "every case occurs: {kept} accepted, {rect_only} listed but missed, {culled} left out"
+        kept > 1000 && listed_missed > 100 && left_out > 100,
+        "every case occurs: {kept} accepted, {listed_missed} listed but missed, {left_out} left out"
     );
 }
 
-/// The stores come back in screen order: a permutation of the originals per kind, and the
-/// primitives the lists name lie in row-major order of the first tile of their rectangles.
+/// The stores come back rearranged: a permutation of the originals per kind, each column
+/// moved alike (the order itself: `bin.rs`'s tests; the lists naming the rearranged stores:
+/// `kernels_accept_rays_only_in_their_packets_and_beyond_near`).
 #[test]
 fn stores_are_rearranged_to_screen_order() {
     let eye = DVec3::new(0.3, 0.2, 1.0);
     let scene = scene(5, eye, DVec3::new(0.0, 0.0, -3.0), 70.0);
     let camera = Camera::new(&scene.camera, 70.0, 83, 57);
     let original = Packed::new(&Prepared::new(&scene, eye));
-    let (tiles, order) = Tiles::new(&scene, &original, &camera);
+    let (_, order) = Tiles::new(&scene, &original, &camera);
     let mut packed = original.clone();
     packed.permute(&order);
     let counts = [
@@ -252,25 +245,6 @@ fn stores_are_rearranged_to_screen_order() {
         packed.triangles.get(0),
         original.triangles.get(first_triangle)
     );
-    // first tile of each listed primitive, by kind and new index
-    let mut first: std::collections::BTreeMap<(u32, u32), u32> = Default::default();
-    for e in &tiles.entries {
-        let [tx, ty, ..] = e.tiles().expect("listed entries are on screen");
-        let key = ty * tiles.cols as u32 + tx;
-        first.insert((e.prim >> KIND_SHIFT, e.prim & INDEX_MASK), key);
-    }
-    assert!(first.len() > 20, "the scene lists primitives of every kind");
-    for kind in 0..3 {
-        let keys: Vec<u32> = first
-            .iter()
-            .filter(|((k, _), _)| *k == kind)
-            .map(|(_, &key)| key)
-            .collect();
-        assert!(
-            keys.windows(2).all(|w| w[0] <= w[1]),
-            "kind {kind}: {keys:?}"
-        );
-    }
 }
 
 /// Small triangles already in screen order (a strip across the image, left to right, as a
