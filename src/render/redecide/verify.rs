@@ -45,7 +45,7 @@ impl Redecide<'_> {
                 let lanes = (untrusted >> (4 * row)) & 0xF;
                 if lanes != 0 {
                     let t32 = std::array::from_fn(|i| t[4 * row + i]);
-                    let ok = self.verified_row(k, (bx, by + row), t32);
+                    let ok = self.verified_row(&k, (bx, by + row), t32);
                     out |= (lanes & !ok) << (4 * row);
                 }
             }
@@ -88,7 +88,7 @@ impl Redecide<'_> {
     /// is within [`BUDGET`] of the oracle's distance for that primitive: lane 0 of
     /// [`Redecide::verified_row`], so one lane and a row follow one rule.
     fn verified(&self, k: Option<Oracle>, t: f32, (x, y): (usize, usize)) -> bool {
-        self.verified_row(k, (x, y), [t; 4]) & 1 != 0
+        self.verified_row(&k, (x, y), [t; 4]) & 1 != 0
     }
 
     /// Which of the f32 hits `t` of the four pixels `x0..x0 + 4` of row `y` (past the image:
@@ -99,11 +99,12 @@ impl Redecide<'_> {
     /// measured against their plane alone, without
     /// dividing: with `v` the pixel's unnormalised f64 ray (`dir_x4d` before its division),
     /// the oracle's distance is `t64 = p |v| / (v . N)`, and `|t - t64| <= BUDGET t64` is
-    /// `|t (v . N) - p |v|| <= BUDGET p |v|` for `v . N > 0` (the same test to f64 rounding,
-    /// ~1e-16). Their edges are not tested again: an f32 edge decision differs from the
+    /// `(1 - BUDGET) p |v| <= t (v . N) <= (1 + BUDGET) p |v|` for `v . N > 0`, every side
+    /// positive, so squared: `((1 -+ BUDGET) p)^2 (v . v)` against `(t (v . N))^2`, with no
+    /// square root either (the same test to f64 rounding, ~1e-16). Their edges are not tested again: an f32 edge decision differs from the
     /// oracle's only within its band (module comment, "Ids"), whatever the depth.
-    #[inline]
-    fn verified_row(&self, k: Option<Oracle>, (x0, y): (usize, usize), t: [f32; 4]) -> u32 {
+    #[inline(always)]
+    fn verified_row(&self, k: &Option<Oracle>, (x0, y): (usize, usize), t: [f32; 4]) -> u32 {
         let tb = &self.tables;
         let sx = f64x4::new(std::array::from_fn(|i| {
             tb.sx[(x0 + i).min(tb.sx.len() - 1)]
@@ -115,16 +116,20 @@ impl Redecide<'_> {
             let v: [f64x4; 3] = std::array::from_fn(|i| {
                 f64x4::splat(f[i]) + sx * f64x4::splat(r[i]) + sy * f64x4::splat(u[i])
             });
-            let len = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+            let len2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
             let dn = v[0] * f64x4::splat(nrm[0])
                 + v[1] * f64x4::splat(nrm[1])
                 + v[2] * f64x4::splat(nrm[2]);
-            let pl = f64x4::splat(p) * len;
-            let ok =
-                dn.simd_gt(f64x4::ZERO) & (t32 * dn - pl).abs().simd_le(f64x4::splat(BUDGET) * pl);
+            // (1 - B) p |v| <= t (v . N) <= (1 + B) p |v|, every side positive: squared
+            let td = t32 * dn;
+            let td2 = td * td;
+            let (lo, hi) = ((1.0 - BUDGET) * p, (1.0 + BUDGET) * p);
+            let ok = dn.simd_gt(f64x4::ZERO)
+                & td2.simd_ge(f64x4::splat(lo * lo) * len2)
+                & td2.simd_le(f64x4::splat(hi * hi) * len2);
             ok.to_bitmask()
         };
-        match k {
+        match *k {
             Some(Oracle::Triangle(k)) => plane(k.nrm, k.p),
             Some(Oracle::Quad(k)) => plane(k.nrm, k.p),
             Some(Oracle::Sphere(k)) => {
