@@ -11,12 +11,32 @@ use crate::kernel::sphere::SphereK;
 use crate::scene::Shape;
 use wide::f64x4;
 
-/// One primitive's f64 constants, as the oracle computes them.
+/// What the measurement needs of one primitive, from the oracle's f64 constants: a sphere's
+/// constants, or a polygon's plane in the camera's basis.
 #[derive(Debug, Clone, Copy)]
 pub(super) enum Oracle {
     Sphere(SphereK<f64>),
-    Triangle(TriangleK<f64>),
-    Quad(QuadK<f64>),
+    /// `N . f`, `N . r`, `N . u` (the oracle's unit normal against the camera's forward, right
+    /// and up vectors), and `((1 - BUDGET) p)^2`, `((1 + BUDGET) p)^2` (`p`: its plane distance).
+    Plane {
+        n: [f64; 3],
+        lo2: f64,
+        hi2: f64,
+    },
+}
+
+impl Oracle {
+    /// The measurement's constants of the polygon with unit normal `nrm` and plane distance
+    /// `p`, for the basis of `tables`.
+    fn plane(nrm: [f64; 3], p: f64, tables: &crate::camera::RayTables<f64>) -> Oracle {
+        let dot = |v: [f64; 3]| nrm[0] * v[0] + nrm[1] * v[1] + nrm[2] * v[2];
+        let (lo, hi) = ((1.0 - BUDGET) * p, (1.0 + BUDGET) * p);
+        Oracle::Plane {
+            n: [dot(tables.f), dot(tables.r), dot(tables.u)],
+            lo2: lo * lo,
+            hi2: hi * hi,
+        }
+    }
 }
 
 impl Redecide<'_> {
@@ -77,8 +97,10 @@ impl Redecide<'_> {
             Shape::Sphere { center, radius } => {
                 Some(Oracle::Sphere(SphereK::new(center, radius, eye)))
             }
-            Shape::Triangle(v) => TriangleK::triangle(&v, eye).map(Oracle::Triangle),
-            Shape::Quad(v) => QuadK::quad(&v, eye).map(Oracle::Quad),
+            Shape::Triangle(v) => {
+                TriangleK::triangle(&v, eye).map(|k| Oracle::plane(k.nrm, k.p, &self.tables))
+            }
+            Shape::Quad(v) => QuadK::quad(&v, eye).map(|k| Oracle::plane(k.nrm, k.p, &self.tables)),
         };
         walk.last.set((id + 1, k));
         k
@@ -101,8 +123,10 @@ impl Redecide<'_> {
     /// the oracle's distance is `t64 = p |v| / (v . N)`, and `|t - t64| <= BUDGET t64` is
     /// `(1 - BUDGET) p |v| <= t (v . N) <= (1 + BUDGET) p |v|` for `v . N > 0`, every side
     /// positive, so squared: `((1 -+ BUDGET) p)^2 (v . v)` against `(t (v . N))^2`, with no
-    /// square root either (the same test to f64 rounding, ~1e-16). Their edges are not tested again: an f32 edge decision differs from the
-    /// oracle's only within its band (module comment, "Ids"), whatever the depth.
+    /// square root either (the same test to f64 rounding, ~1e-16; `v . N` and `v . v` from the
+    /// plane's constants in the camera's basis, [`Oracle::Plane`]). Their edges are not tested
+    /// again: an f32 edge decision differs from the oracle's only within its band (module
+    /// comment, "Ids"), whatever the depth.
     #[inline(always)]
     fn verified_row(&self, k: &Option<Oracle>, (x0, y): (usize, usize), t: [f32; 4]) -> u32 {
         let tb = &self.tables;
@@ -111,27 +135,20 @@ impl Redecide<'_> {
         }));
         let sy = f64x4::splat(tb.sy[y]);
         let t32 = f64x4::new(t.map(f64::from));
-        let plane = |nrm: [f64; 3], p: f64| {
-            let (f, r, u) = (tb.f, tb.r, tb.u);
-            let v: [f64x4; 3] = std::array::from_fn(|i| {
-                f64x4::splat(f[i]) + sx * f64x4::splat(r[i]) + sy * f64x4::splat(u[i])
-            });
-            let len2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-            let dn = v[0] * f64x4::splat(nrm[0])
-                + v[1] * f64x4::splat(nrm[1])
-                + v[2] * f64x4::splat(nrm[2]);
-            // (1 - B) p |v| <= t (v . N) <= (1 + B) p |v|, every side positive: squared
-            let td = t32 * dn;
-            let td2 = td * td;
-            let (lo, hi) = ((1.0 - BUDGET) * p, (1.0 + BUDGET) * p);
-            let ok = dn.simd_gt(f64x4::ZERO)
-                & td2.simd_ge(f64x4::splat(lo * lo) * len2)
-                & td2.simd_le(f64x4::splat(hi * hi) * len2);
-            ok.to_bitmask()
-        };
         match *k {
-            Some(Oracle::Triangle(k)) => plane(k.nrm, k.p),
-            Some(Oracle::Quad(k)) => plane(k.nrm, k.p),
+            // v = f + sx r + sy u with f, r, u orthonormal (to f64 rounding): v . N and v . v
+            // in two multiply-adds each; (1 - B) p |v| <= t (v . N) <= (1 + B) p |v|, every
+            // side positive, compared squared
+            Some(Oracle::Plane { n, lo2, hi2 }) => {
+                let dn = f64x4::splat(n[0]) + sx * f64x4::splat(n[1]) + sy * f64x4::splat(n[2]);
+                let len2 = f64x4::ONE + sx * sx + sy * sy;
+                let td = t32 * dn;
+                let td2 = td * td;
+                let ok = dn.simd_gt(f64x4::ZERO)
+                    & td2.simd_ge(f64x4::splat(lo2) * len2)
+                    & td2.simd_le(f64x4::splat(hi2) * len2);
+                ok.to_bitmask()
+            }
             Some(Oracle::Sphere(k)) => {
                 let Some((mask, t64)) = sphere_x4d(&k, &dir_x4d(tb, sx, sy)) else {
                     return 0;
@@ -204,13 +221,17 @@ mod tests {
                 // the oracle's distance of each lane for each primitive, then f32 hits at it
                 // and at 2 BUDGET beyond it
                 for id in 0..2 {
-                    let k = r.oracle(&walk, id);
+                    // the oracle's own kernel and constants for the primitive
                     let t64: [Option<f64>; 8] = std::array::from_fn(|l| {
                         let d = r.tables.dir_x1(bx + l % 4, by + l / 4);
-                        match k {
-                            Some(Oracle::Sphere(k)) => sphere_x1(&k, d),
-                            Some(Oracle::Triangle(k)) => polygon_x1(&k, d),
-                            _ => None,
+                        match scene.shapes.get(id) {
+                            Shape::Sphere { center, radius } => {
+                                sphere_x1(&SphereK::new(center, radius, camera.eye), d)
+                            }
+                            Shape::Triangle(v) => {
+                                TriangleK::triangle(&v, camera.eye).and_then(|k| polygon_x1(&k, d))
+                            }
+                            Shape::Quad(_) => None,
                         }
                     });
                     let lanes: u32 = (0..8)
