@@ -57,7 +57,8 @@ impl Redecide<'_> {
         }
         let (t, id) = (hit.t.to_array(), hit.id.to_array());
         let first = id[untrusted.trailing_zeros() as usize];
-        let one = (0..8).all(|l| untrusted >> l & 1 == 0 || id[l] == first);
+        let same = hit.id.simd_eq(wide::f32x8::splat(first)).to_bitmask() as u32;
+        let one = same & untrusted == untrusted;
         if bw == 4 && untrusted.count_ones() >= ROW_MIN && one {
             let k = self.oracle(walk, first as usize);
             let mut out = 0;
