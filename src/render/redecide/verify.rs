@@ -57,7 +57,7 @@ impl Redecide<'_> {
         }
         let (t, id) = (hit.t.to_array(), hit.id.to_array());
         let first = id[untrusted.trailing_zeros() as usize];
-        let same = hit.id.simd_eq(wide::f32x8::splat(first)).to_bitmask() as u32;
+        let same = hit.id.simd_eq(wide::f32x8::splat(first)).to_bitmask();
         let one = same & untrusted == untrusted;
         if bw == 4 && untrusted.count_ones() >= ROW_MIN && one {
             let k = self.oracle(walk, first as usize);
