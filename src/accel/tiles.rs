@@ -221,11 +221,12 @@ impl Tiles {
     /// Nearest hit of the ray `d` of pixel `(x, y)` with the scalar kernels in precision `T`
     /// (the oracle in f64, `scalar-f32`): the pixel's tile list, nearest first, left once the
     /// hit is nearer than the next entry's `near`. `p` holds the same primitives in the same
-    /// order as the `Packed` the tiles were built from.
+    /// order as the `Packed` the tiles were built from, once rearranged (`Order`).
     ///
     /// The bounds hold for both precisions: the f64 kernel accepts rays within a far smaller
     /// edge tolerance than the f32 one (`kernel::edge_eps`) and its distances err by f64 rounding
-    /// only, so its hits lie inside the f32 rectangles and beyond the f32 `near`; the scalar f32
+    /// only (its rays differ from the f32 ones by a few u, inside the 32u margin), so its hits
+    /// lie inside the f32 rectangles and packets and beyond the f32 `near`; the scalar f32
     /// kernel is the packet kernel's formula in one lane. Proven against `--accel none`, bit for
     /// bit, by tests/accel.rs.
     #[inline]
@@ -266,7 +267,8 @@ impl Tiles {
 
     /// The walk the scalar and f64x4 traces share: the list of the tile of pixels `x0..=x1` of
     /// row `y`, nearest first, while `goes_on(hit, near)` (some ray may still find a nearer
-    /// hit), calling `visit(hit, kind, index)` on each entry whose rectangle reaches the span.
+    /// hit), calling `visit(hit, kind, index)` on each entry whose packets include one of the
+    /// span's.
     #[inline(always)]
     fn walk_span<H>(
         &self,
