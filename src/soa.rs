@@ -64,8 +64,8 @@ impl<K> Group<K> {
         K: Clone + Send + Sync,
     {
         if let Some(order) = order {
-            gather(&mut self.k, order);
-            gather(&mut self.id, order);
+            gather([&mut self.k], order);
+            gather([&mut self.id], order);
         }
     }
 
@@ -82,20 +82,18 @@ impl<K> Group<K> {
 /// is. The tiles order the stores the way the render reaches them (`accel::tiles`).
 pub type Order = [Option<Vec<u32>>; 3];
 
-/// `col` rearranged so that its element `j` is its old element `order[j]`, on all threads;
-/// only this column exists twice meanwhile.
-pub(crate) fn gather<T: Clone + Send + Sync>(col: &mut Vec<T>, order: &[u32]) {
-    let old = std::mem::take(col);
-    *col = order.par_iter().map(|&i| old[i as usize].clone()).collect();
-}
-
-/// [`gather`] for several columns of one length, through one scratch buffer that each column's
-/// old storage becomes in turn: one allocation (and one first touch of its pages) for all.
-pub(crate) fn gather_all<'c>(cols: impl IntoIterator<Item = &'c mut Vec<f32>>, order: &[u32]) {
-    let mut scratch: Vec<f32> = Vec::with_capacity(order.len());
+/// Each of `cols` (columns of one length) rearranged so that its element `j` is its old
+/// element `order[j]`, gathered on all threads through one scratch buffer that each column's
+/// old storage becomes in turn: one allocation (and one first touch of its pages) for all, and
+/// only one column exists twice at any time.
+pub(crate) fn gather<'c, T: Clone + Send + Sync + 'c>(
+    cols: impl IntoIterator<Item = &'c mut Vec<T>>,
+    order: &[u32],
+) {
+    let mut scratch: Vec<T> = Vec::with_capacity(order.len());
     for col in cols {
         scratch.clear();
-        scratch.par_extend(order.par_iter().map(|&i| col[i as usize]));
+        scratch.par_extend(order.par_iter().map(|&i| col[i as usize].clone()));
         std::mem::swap(col, &mut scratch);
     }
 }

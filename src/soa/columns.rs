@@ -2,7 +2,7 @@
 //! constant, one store per type, built straight from the scene on all threads and rearranged
 //! as an acceleration structure asks (`super::Order`).
 
-use super::{Group, Order, Prepared, gather, gather_all};
+use super::{Group, Order, Prepared, gather};
 use crate::kernel::polygon::{PolyK, QuadK, TriangleK};
 use crate::kernel::sphere::SphereK;
 use crate::scene::{Scene, Shape};
@@ -100,8 +100,8 @@ impl Spheres {
             &mut self.c,
             &mut self.id,
         ];
-        gather_all(cols, order);
-        gather(&mut self.inside, order);
+        gather(cols, order);
+        gather([&mut self.inside], order);
     }
 
     /// Sphere `i`'s constants, gathered from the columns.
@@ -195,7 +195,7 @@ impl<const N: usize> Polygons<N> {
     fn permute(&mut self, order: Option<&Vec<u32>>) {
         let Some(order) = order else { return };
         let cols = self.n.iter_mut().flatten().chain(&mut self.nrm);
-        gather_all(cols.chain([&mut self.p, &mut self.id]), order);
+        gather(cols.chain([&mut self.p, &mut self.id]), order);
     }
 
     /// Polygon `i`'s constants, gathered from the columns.
