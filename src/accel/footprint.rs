@@ -179,9 +179,10 @@ fn closest_to_origin(a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
     a + ab * (vb * denom) + ac * (vc * denom)
 }
 
-/// The 4x2 packets of the image, for leaving out of a packet's list the polygons whose edge
-/// planes have every ray of the packet outside (`Tiles::split_tile`), one f32x8 lane per packet
-/// of a tile (packet `k` at column `k % 2`, row `k / 2` of the tile).
+/// The 4x2 packets of the image, for leaving out of a tile entry's packets those whose rays
+/// all lie outside one of a polygon's edge planes or all pass too far from a sphere (binning,
+/// `tiles/bin.rs`), one f32x8 lane per packet of a tile (packet `k` at column `k % 2`, row
+/// `k / 2` of the tile).
 ///
 /// Derivation. A packet's rays go through the points `a = f + sx r + sy u` of the image plane
 /// at distance 1 (`f`, `r`, `u` orthonormal, so `|a| >= 1`), with `sx`, `sy` its pixels' screen

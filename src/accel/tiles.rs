@@ -100,7 +100,7 @@ const QUAD: u32 = 2;
 const KIND_SHIFT: u32 = 30;
 const INDEX_MASK: u32 = (1 << KIND_SHIFT) - 1;
 
-/// One primitive in one tile's list.
+/// One primitive in one tile's list: 12 bytes (checked below).
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Entry {
     /// Lower bound on any distance the kernel returns for this primitive (f32, rounded down).
@@ -112,6 +112,8 @@ struct Entry {
     /// finds out of reach.
     packets: u8,
 }
+
+const _: () = assert!(std::mem::size_of::<Entry>() == 12);
 
 /// Per-tile lists of primitives, nearest first.
 #[derive(Debug, Clone)]
@@ -152,8 +154,8 @@ impl Tiles {
         }
     }
 
-    /// Splits tile (tx, ty)'s list into its eight 4x2 packets' lists (`PACKETS_X` columns,
-    /// `PACKETS_Y` rows, packet `k` at column `k % 2`, row `k / 2`) by each entry's packets,
+    /// Splits tile (tx, ty)'s list into its eight 4x2 packets' lists (packet `k` at column
+    /// `k % 2`, row `k / 2` of the tile) by each entry's packets,
     /// keeping the nearest-first order: each packet then walks only the entries that may reach
     /// it, with no test per entry (README, "Against Embree 3": growth before and after).
     #[inline]

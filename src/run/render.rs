@@ -111,8 +111,7 @@ pub(crate) fn render_command(s: &RenderSettings) -> Result<()> {
     let mut frame = None;
     for _ in 0..s.repeat {
         // the last frame's buffers are freed before the next is allocated, so the allocator
-        // hands the same memory back rather than fresh pages to fault in (measured: with two
-        // frames alive, --precision auto's median render at 1920x1080 took ~7 ms more)
+        // can hand the same memory back rather than fresh pages to fault in on every repeat
         drop(frame.take());
         let start = Instant::now();
         let (f, redone) = progress::with_progress(renderer.work_units(), |done| {

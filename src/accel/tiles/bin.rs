@@ -140,8 +140,9 @@ impl Tiles {
                 }
         };
         // The tiles of a footprint's rectangle with their packets: a rectangle within one tile
-        // is listed there without a test (its packets may come out empty: never tested); a
-        // larger one in each tile where some packet is left.
+        // is listed there whatever its packets (so the counting pass need not find them; an
+        // entry whose packets come out empty is never tested), a larger one only in the tiles
+        // where some packet is left.
         let covered = |e: &Print, test_single: bool| {
             let e = *e;
             let [tx0, ty0, tx1, ty1] = e.tiles().unwrap_or([1, 1, 0, 0]);

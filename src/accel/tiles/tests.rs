@@ -204,7 +204,7 @@ fn split_tile_keeps_the_entries_reaching_each_packet() {
 /// moved alike (the order itself: `bin.rs`'s tests; the lists naming the rearranged stores:
 /// `kernels_accept_rays_only_in_their_packets_and_beyond_near`).
 #[test]
-fn stores_are_rearranged_to_screen_order() {
+fn stores_are_permuted_column_by_column_alike() {
     let eye = DVec3::new(0.3, 0.2, 1.0);
     let scene = scene(5, eye, DVec3::new(0.0, 0.0, -3.0), 70.0);
     let camera = Camera::new(&scene.camera, 70.0, 83, 57);
