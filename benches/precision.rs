@@ -8,7 +8,8 @@
 //! `../shared/anchors/gen_scenes.py` at 1280x720 where `target/scale/` holds them
 //! (`python3 scripts/vs_embree.py` or `scripts/auto_speed.py` writes them).
 //!
-//! `cargo bench --bench precision`; `LANECAST_BENCH_QUICK=1` for 9 rounds instead of 31.
+//! `cargo bench --bench precision`; `LANECAST_BENCH_QUICK=1` for 9 rounds instead of 31;
+//! `cargo bench --bench precision -- scene7` for the cases whose name contains `scene7`.
 
 use lanecast::camera::Camera;
 use lanecast::render::{Method, Options, Renderer};
@@ -74,7 +75,13 @@ fn main() {
     );
     println!("|---|---|---:|---:|---:|---:|---:|---:|");
     let mut worst = f64::INFINITY;
-    for (name, path, w, h) in cases() {
+    // cargo passes `--bench`; any other argument filters the cases by name
+    let filters: Vec<String> = std::env::args()
+        .skip(1)
+        .filter(|a| !a.starts_with("--"))
+        .collect();
+    let wanted = |name: &str| filters.is_empty() || filters.iter().any(|f| name.contains(f));
+    for (name, path, w, h) in cases().into_iter().filter(|c| wanted(&c.0)) {
         let scene = match load_scene(&path) {
             Ok(s) => s,
             Err(e) => {

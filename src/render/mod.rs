@@ -214,14 +214,6 @@ pub(crate) fn packet_blocks<const BW: usize>(
             m &= m - 1;
         }
     };
-    let fix = |walk: &Option<(&Redecide, redecide::Walk)>,
-               (bx, y): (usize, usize),
-               hit: &mut Hit8,
-               mine: &mut Vec<usize>| {
-        if let Some((r, walk)) = walk {
-            note_lanes(r.fix_packet(walk, (bx, y, BW), hit), bx, y, mine);
-        }
-    };
     let note = |mine: Vec<usize>| {
         if !mine.is_empty() {
             redone
@@ -294,9 +286,12 @@ pub(crate) fn packet_blocks<const BW: usize>(
                     let mut hit = Hit8::new(active);
                     let y = y_start + by;
                     p.trace_x8([bx, y, bx + BW - 1, y + LANES / BW - 1], &d, &mut hit);
-                    fix(&walk, (bx, y), &mut hit, &mut mine);
                     store(ids, depth, bx, by, &hit);
                 }
+            }
+            // auto: the finished strip's hits checked, and re-decided where untrusted
+            if let Some((r, walk)) = &walk {
+                r.fix_strip(walk, (y_start, width), ids, depth, &mut mine);
             }
             note(mine);
         }),

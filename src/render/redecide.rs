@@ -122,7 +122,7 @@ pub(crate) struct Walk<'a> {
     records: Cached<'a>,
     /// The oracle's constants of the primitive last measured by [`Redecide::verified`], keyed
     /// by its id + 1 (0: none yet): neighbouring lanes mostly hit the same primitive.
-    last: std::cell::Cell<(usize, Option<Oracle>)>,
+    last: RefCell<(usize, Option<Oracle>)>,
     tiles: Option<&'a Tiles>,
     bvh: Option<&'a Bvh>,
 }
@@ -293,56 +293,225 @@ impl<'s> Redecide<'s> {
                 triangles: RefCell::new(Vec::new()),
                 quads: RefCell::new(Vec::new()),
             },
-            last: std::cell::Cell::new((0, None)),
+            last: RefCell::new((0, None)),
             tiles,
             bvh,
         }
     }
 
-    /// Checks the hits of the packet at pixel `(bx, by)` (`bw` pixels wide, lanes in rows) and
-    /// decides again in f64 each lane whose hit lies outside its primitive's trusted distances.
-    /// Returns the lanes re-decided, as a bit mask.
-    #[inline]
-    pub(crate) fn fix_packet(
+    /// Checks the hits of a finished strip (`ids`, `depth`: whole rows of `width` pixels from
+    /// row `y_start`) and decides again in f64 each pixel whose hit lies outside its primitive's
+    /// trusted distances, noting its index in the image in `mine`. The scan reads eight
+    /// pixels per compare (a pixel nearer than `safe` needs no lookup), after the strip's
+    /// packets: the packet loop is the f32 one, unchanged (`--accel none` and `bvh`).
+    pub(crate) fn fix_strip(
         &self,
         walk: &Walk,
-        (bx, by, bw): (usize, usize, usize),
-        hit: &mut Hit8,
-    ) -> u32 {
-        let hits = hit.id.simd_ge(f32x8::ZERO);
-        if !(hits & hit.t.simd_gt(f32x8::splat(self.safe))).any() {
-            return 0;
+        (y_start, width): (usize, usize),
+        ids: &mut [i32],
+        depth: &mut [f32],
+        mine: &mut Vec<usize>,
+    ) {
+        let (safe, inf) = (f32x8::splat(self.safe), f32x8::splat(f32::INFINITY));
+        for (r, (ids, depth)) in ids
+            .chunks_exact_mut(width)
+            .zip(depth.chunks_exact_mut(width))
+            .enumerate()
+        {
+            let y = y_start + r;
+            // sixteen pixels per branch: the scan runs over every pixel of the image
+            let suspects = |depth: &[f32], x0: usize| {
+                let d = f32x8::new(depth[x0..x0 + 8].try_into().expect("8 pixels"));
+                // background is +inf, and `safe` is below it
+                (d.simd_gt(safe) & d.simd_lt(inf)).to_bitmask()
+            };
+            let (pairs, whole) = (width / 16 * 16, width / 8 * 8);
+            for x0 in (0..pairs).step_by(16) {
+                let (a, b) = (suspects(depth, x0), suspects(depth, x0 + 8));
+                if a | b != 0 {
+                    for (x0, suspect) in [(x0, a), (x0 + 8, b)] {
+                        if suspect != 0 {
+                            let run = (x0, x0 + 8, y);
+                            self.fix_run(walk, run, ids, depth, suspect, width, mine);
+                        }
+                    }
+                }
+            }
+            if pairs < whole {
+                let suspect = suspects(depth, pairs);
+                if suspect != 0 {
+                    let run = (pairs, whole, y);
+                    self.fix_run(walk, run, ids, depth, suspect, width, mine);
+                }
+            }
+            if whole < width {
+                let suspect = (whole..width)
+                    .filter(|&x| depth[x] > self.safe && depth[x] < f32::INFINITY)
+                    .fold(0, |m, x| m | 1 << (x - whole));
+                if suspect != 0 {
+                    let run = (whole, width, y);
+                    self.fix_run(walk, run, ids, depth, suspect, width, mine);
+                }
+            }
         }
-        self.fix_beyond_safe(walk, (bx, by, bw), hit, hits)
     }
 
-    /// The rest of [`Redecide::fix_packet`], for a packet with a hit beyond `safe`: kept out of
-    /// the packet loop.
+    /// The rest of [`Redecide::fix_strip`] for the pixels `x0..x1` (at most eight) of row `y`
+    /// of which `suspect` (bits from `x0`) lie beyond `safe`, in groups of four: kept out of
+    /// the scan.
     #[inline(never)]
-    fn fix_beyond_safe(
+    #[allow(clippy::too_many_arguments)]
+    fn fix_run(
         &self,
         walk: &Walk,
-        (bx, by, bw): (usize, usize, usize),
-        hit: &mut Hit8,
-        hits: f32x8,
-    ) -> u32 {
-        // ids are exact in f32 and below `limits.len()`; background lanes read entry 0
-        let none = [0.0, f32::INFINITY];
-        let limit = |id: f32| *self.limits.get(id as usize).unwrap_or(&none);
-        let ids = hits.select(hit.id, f32x8::ZERO);
-        // a hit lane exists: the check above found one
-        let first = ids.to_array()[hits.to_bitmask().trailing_zeros() as usize % 8];
-        let (lo, hi) = if (hits & !ids.simd_eq(f32x8::splat(first))).any() {
-            let lim = ids.to_array().map(limit);
-            (f32x8::new(lim.map(|l| l[0])), f32x8::new(lim.map(|l| l[1])))
-        } else {
-            // one primitive under every hit lane (the common case): one lookup
-            let [lo, hi] = limit(first);
-            (f32x8::splat(lo), f32x8::splat(hi))
+        (x0, x1, y): (usize, usize, usize),
+        ids: &mut [i32],
+        depth: &mut [f32],
+        suspect: u32,
+        width: usize,
+        mine: &mut Vec<usize>,
+    ) {
+        let first = ids[x0 + suspect.trailing_zeros() as usize];
+        if x1 - x0 == 8 && self.one_primitive(&ids[x0..x1], first, suspect) {
+            // one primitive under every suspect pixel (the common case): one lookup, one
+            // compare, and the oracle's constants fetched once for the eight
+            let [lo, hi] = self
+                .limits
+                .get(first as usize)
+                .copied()
+                .unwrap_or([0.0, f32::INFINITY]);
+            let d = f32x8::new(depth[x0..x0 + 8].try_into().expect("8 pixels"));
+            let out = d.simd_lt(f32x8::splat(lo)) | d.simd_gt(f32x8::splat(hi));
+            let untrusted = suspect & out.to_bitmask();
+            if untrusted == 0 {
+                return;
+            }
+            let k = self.oracle(walk, first as usize);
+            for g in [x0, x0 + 4] {
+                let lanes = (untrusted >> (g - x0)) & 0xF;
+                if lanes == 0 {
+                    continue;
+                }
+                let mut t: [f32; 4] = depth[g..g + 4].try_into().expect("4 pixels");
+                let left = lanes & !self.verified_row(&k, (g, y), t);
+                if left != 0 {
+                    let mut id = [first as f32; 4];
+                    self.redo_group(walk, (g, y), &mut t, &mut id, left);
+                    self.write_back((g, y, width), (&t, &id), left, (ids, depth), mine);
+                }
+            }
+            return;
+        }
+        for g in (x0..x1).step_by(4) {
+            let lanes = (suspect >> (g - x0)) & 0xF;
+            if lanes == 0 {
+                continue;
+            }
+            let n = (x1 - g).min(4);
+            let mut t = std::array::from_fn(|i| if i < n { depth[g + i] } else { 0.0 });
+            let mut id = std::array::from_fn(|i| if i < n { ids[g + i] as f32 } else { -1.0 });
+            let untrusted = self.outside(&t, &id, lanes);
+            let redone = self.fix_group(walk, (g, y), &mut t, &mut id, untrusted);
+            self.write_back((g, y, width), (&t, &id), redone, (ids, depth), mine);
+        }
+    }
+
+    /// Whether every pixel of `suspect` (bits) among the eight `ids` holds primitive `first`
+    /// (compared all eight at once).
+    #[inline(always)]
+    fn one_primitive(&self, ids: &[i32], first: i32, suspect: u32) -> bool {
+        let ids: [i32; 8] = ids.try_into().expect("8 pixels");
+        let same = (0..8).fold(0, |m, i| m | u32::from(ids[i] == first) << i);
+        suspect & !same == 0
+    }
+
+    /// Writes the lanes `lanes` (bits) of the group at pixel `(x0, y)` (`t`, `id`) into their
+    /// row (`ids`, `depth`) and notes their indices in the `width`-wide image in `mine`.
+    fn write_back(
+        &self,
+        (x0, y, width): (usize, usize, usize),
+        (t, id): (&[f32; 4], &[f32; 4]),
+        lanes: u32,
+        (ids, depth): (&mut [i32], &mut [f32]),
+        mine: &mut Vec<usize>,
+    ) {
+        let mut m = lanes;
+        while m != 0 {
+            let i = m.trailing_zeros() as usize;
+            (depth[x0 + i], ids[x0 + i]) = (t[i], id[i] as i32);
+            mine.push(y * width + x0 + i);
+            m &= m - 1;
+        }
+    }
+
+    /// The lanes of `lanes` (bits) whose hit `t` lies outside the trusted distances of its
+    /// primitive `id`: one lookup when they share a primitive (the common case).
+    #[inline]
+    fn outside(&self, t: &[f32; 4], id: &[f32; 4], lanes: u32) -> u32 {
+        // ids are exact in f32 and below `limits.len()`
+        let limit = |id: f32| {
+            self.limits
+                .get(id as usize)
+                .copied()
+                .unwrap_or([0.0, f32::INFINITY])
         };
-        let outside = hit.t.simd_lt(lo) | hit.t.simd_gt(hi);
-        let untrusted = self.recheck(walk, (bx, by, bw), hit, (outside & hits).to_bitmask());
-        self.redo(walk, (bx, by, bw), hit, untrusted)
+        let first = id[lanes.trailing_zeros() as usize % 4];
+        let one = (0..4).all(|i| lanes & (1 << i) == 0 || id[i] == first);
+        let lim: [[f32; 2]; 4] = if one {
+            [limit(first); 4]
+        } else {
+            std::array::from_fn(|i| limit(id[i]))
+        };
+        (0..4)
+            .filter(|&i| lanes & (1 << i) != 0 && (t[i] < lim[i][0] || t[i] > lim[i][1]))
+            .fold(0, |m, i| m | 1 << i)
+    }
+
+    /// Measures the `untrusted` lanes (bits) of the four pixels `x0..x0 + 4` of row `y`
+    /// ([`Redecide::recheck_group`]) and decides again in f64 those that stay untrusted,
+    /// writing the oracle's answers into `t` and `id`. Returns those lanes.
+    #[inline]
+    fn fix_group(
+        &self,
+        walk: &Walk,
+        (x0, y): (usize, usize),
+        t: &mut [f32; 4],
+        id: &mut [f32; 4],
+        untrusted: u32,
+    ) -> u32 {
+        if untrusted == 0 {
+            return 0;
+        }
+        let left = self.recheck_group(walk, (x0, y), t, id, untrusted);
+        if left != 0 {
+            self.redo_group(walk, (x0, y), t, id, left);
+        }
+        left
+    }
+
+    /// Decides again in f64 the lanes `lanes` (bits) of the four pixels `x0..x0 + 4` of row
+    /// `y`, writing the oracle's answers into `t` and `id`.
+    #[inline(never)]
+    fn redo_group(
+        &self,
+        walk: &Walk,
+        (x0, y): (usize, usize),
+        t: &mut [f32; 4],
+        id: &mut [f32; 4],
+        lanes: u32,
+    ) {
+        if lanes.count_ones() >= ROW_MIN {
+            // f64x4 lanes: each lane is the oracle's answer, bit for bit
+            let (rt, rid) = self.trace_row(walk, (x0, y), lanes);
+            for i in 0..4 {
+                if lanes & (1 << i) != 0 {
+                    (t[i], id[i]) = (rt[i], rid[i]);
+                }
+            }
+        } else {
+            let i = lanes.trailing_zeros() as usize;
+            (t[i], id[i]) = self.trace(walk, (x0 + i, y));
+        }
     }
 
     /// [`Redecide::fix_packet`] for a packet traced with each lane's trusted distance carried
@@ -364,8 +533,9 @@ impl<'s> Redecide<'s> {
         self.fix_suspects(walk, (bx, by, bw), hit, suspect)
     }
 
-    /// The rest of [`Redecide::fix_packet_carried`] for the lanes of `suspect` (bits): kept
-    /// out of the packet loop, which rarely comes here.
+    /// The rest of [`Redecide::fix_packet_carried`] for the lanes of `suspect` (bits), a
+    /// group of four pixels at a time ([`Redecide::fix_group`]): kept out of the packet loop,
+    /// which rarely comes here.
     #[cold]
     #[inline(never)]
     fn fix_suspects(
@@ -373,24 +543,32 @@ impl<'s> Redecide<'s> {
         walk: &Walk,
         (bx, by, bw): (usize, usize, usize),
         hit: &mut Hit8,
-        mut suspect: u32,
+        suspect: u32,
     ) -> u32 {
-        let (t, id) = (hit.t.to_array(), hit.id.to_array());
-        let mut untrusted = 0;
-        while suspect != 0 {
-            let lane = suspect.trailing_zeros() as usize;
-            let [lo, hi] = self
-                .limits
-                .get(id[lane] as usize)
-                .copied()
-                .unwrap_or([0.0, f32::INFINITY]);
-            if t[lane] < lo || t[lane] > hi {
-                untrusted |= 1 << lane;
+        let (mut t, mut id) = (hit.t.to_array(), hit.id.to_array());
+        let mut redone = 0;
+        for g in (0..8).step_by(4) {
+            let lanes = (suspect >> g) & 0xF;
+            if lanes == 0 {
+                continue;
             }
-            suspect &= suspect - 1;
+            let mut gt: [f32; 4] = t[g..g + 4].try_into().expect("4 lanes");
+            let mut gid: [f32; 4] = id[g..g + 4].try_into().expect("4 lanes");
+            let untrusted = self.outside(&gt, &gid, lanes);
+            // lanes g..g + 4 are one row of four pixels (blocks 4 or 8 wide)
+            let at = (bx + g % bw, by + g / bw);
+            let m = self.fix_group(walk, at, &mut gt, &mut gid, untrusted);
+            if m != 0 {
+                t[g..g + 4].copy_from_slice(&gt);
+                id[g..g + 4].copy_from_slice(&gid);
+                redone |= m << g;
+            }
         }
-        let untrusted = self.recheck(walk, (bx, by, bw), hit, untrusted);
-        self.redo(walk, (bx, by, bw), hit, untrusted)
+        if redone != 0 {
+            hit.t = f32x8::new(t);
+            hit.id = f32x8::new(id);
+        }
+        redone
     }
 
     /// The trusted distance to carry for a lane won by primitive `index` of kind `kind`
@@ -398,47 +576,6 @@ impl<'s> Redecide<'s> {
     #[inline(always)]
     pub(crate) fn carried(&self, kind: usize, index: usize) -> f32 {
         self.carried[kind][index]
-    }
-
-    /// Decides again in f64 the lanes of `untrusted` (bits) of the packet at pixel `(bx, by)`.
-    /// Returns them.
-    #[inline]
-    fn redo(
-        &self,
-        walk: &Walk,
-        (bx, by, bw): (usize, usize, usize),
-        hit: &mut Hit8,
-        untrusted: u32,
-    ) -> u32 {
-        let mut untrusted = untrusted;
-        if untrusted == 0 {
-            return 0;
-        }
-        let redone = untrusted;
-        let (mut t, mut id) = (hit.t.to_array(), hit.id.to_array());
-        if bw == 4 && untrusted.count_ones() >= ROW_MIN {
-            // rows of four in f64x4 lanes: each lane is the oracle's answer, bit for bit
-            for row in 0..2 {
-                let lanes = (untrusted >> (4 * row)) & 0xF;
-                if lanes != 0 {
-                    let (rt, rid) = self.trace_row(walk, (bx, by + row), lanes);
-                    for i in 0..4 {
-                        if lanes & (1 << i) != 0 {
-                            (t[4 * row + i], id[4 * row + i]) = (rt[i], rid[i]);
-                        }
-                    }
-                }
-            }
-            untrusted = 0;
-        }
-        while untrusted != 0 {
-            let lane = untrusted.trailing_zeros() as usize;
-            (t[lane], id[lane]) = self.trace(walk, (bx + lane % bw, by + lane / bw));
-            untrusted &= untrusted - 1;
-        }
-        hit.t = f32x8::new(t);
-        hit.id = f32x8::new(id);
-        redone
     }
 
     /// The oracle's hits for the pixels `x0..x0 + 4` of row `y` in the lanes of `lanes` (bits),

@@ -3,12 +3,12 @@
 //! oracle's own kernel for that primitive, along the pixel's f64 ray, puts it within
 //! [`BUDGET`] of its distance.
 
-use super::{BUDGET, ROW_MIN, Redecide, Walk};
-use crate::kernel::Hit8;
+use super::{BUDGET, Redecide, Walk};
 use crate::kernel::methods::wide64::{dir_x4d, sphere_x4d};
 use crate::kernel::polygon::{QuadK, TriangleK};
 use crate::kernel::sphere::SphereK;
 use crate::scene::Shape;
+use std::cell::Ref;
 use wide::f64x4;
 
 /// What the measurement needs of one primitive, from the oracle's f64 constants: a sphere's
@@ -40,61 +40,52 @@ impl Oracle {
 }
 
 impl Redecide<'_> {
-    /// The lanes of `untrusted` (bits) whose hits stay untrusted once measured against the
-    /// oracle's kernel for their own primitive ([`Redecide::verified`]). Lanes on one primitive
-    /// (the common case) are measured a row of four at a time in f64x4 lanes, each lane the
-    /// scalar kernel's answer bit for bit (`kernel::methods::wide64`).
+    /// The lanes of `untrusted` (bits) of the four pixels `x0..x0 + 4` of row `y` (hits `t`
+    /// on primitives `id`) whose hits stay untrusted once measured against the oracle's kernel
+    /// for their own primitive. Lanes on one primitive (the common case) are measured together
+    /// in f64x4 lanes, each lane the scalar kernel's answer bit for bit
+    /// (`kernel::methods::wide64`); others one primitive at a time.
     #[inline]
-    pub(super) fn recheck(
+    pub(super) fn recheck_group(
         &self,
         walk: &Walk,
-        (bx, by, bw): (usize, usize, usize),
-        hit: &Hit8,
+        (x0, y): (usize, usize),
+        t: &[f32; 4],
+        id: &[f32; 4],
         untrusted: u32,
     ) -> u32 {
-        if untrusted == 0 {
-            return 0;
-        }
-        let (t, id) = (hit.t.to_array(), hit.id.to_array());
-        let first = id[untrusted.trailing_zeros() as usize];
-        let same = hit.id.simd_eq(wide::f32x8::splat(first)).to_bitmask();
-        let one = same & untrusted == untrusted;
-        if bw == 4 && untrusted.count_ones() >= ROW_MIN && one {
-            let k = self.oracle(walk, first as usize);
-            let mut out = 0;
-            for row in 0..2 {
-                let lanes = (untrusted >> (4 * row)) & 0xF;
-                if lanes != 0 {
-                    let t32 = std::array::from_fn(|i| t[4 * row + i]);
-                    let ok = self.verified_row(&k, (bx, by + row), t32);
-                    out |= (lanes & !ok) << (4 * row);
-                }
-            }
-            return out;
-        }
-        let (mut left, mut out) = (untrusted, untrusted);
+        let mut left = untrusted;
+        let mut out = 0;
         while left != 0 {
-            let lane = left.trailing_zeros() as usize;
-            let k = self.oracle(walk, id[lane] as usize);
-            if self.verified(k, t[lane], (bx + lane % bw, by + lane / bw)) {
-                out &= !(1 << lane);
-            }
-            left &= left - 1;
+            // the lanes on the first remaining lane's primitive, measured together
+            let first = id[left.trailing_zeros() as usize];
+            let same = (0..4)
+                .filter(|&i| id[i] == first)
+                .fold(0, |m, i| m | 1 << i)
+                & left;
+            let k = self.oracle(walk, first as usize);
+            out |= same & !self.verified_row(&k, (x0, y), *t);
+            left &= !same;
         }
         out
     }
 
     /// The oracle's constants of primitive `id` (`None`: a polygon seen edge-on, never hit),
-    /// from the walk's one-entry cache.
+    /// from the walk's one-entry cache, borrowed in place (neighbouring lanes mostly hit the
+    /// same primitive; a copy out of the cache cost more than the measurement).
     #[inline]
-    pub(super) fn oracle(&self, walk: &Walk, id: usize) -> Option<Oracle> {
-        if let (key, k) = walk.last.get()
-            && key == id + 1
-        {
-            return k;
+    pub(super) fn oracle<'w>(&self, walk: &'w Walk, id: usize) -> Ref<'w, Option<Oracle>> {
+        if walk.last.borrow().0 != id + 1 {
+            *walk.last.borrow_mut() = (id + 1, self.make_oracle(id));
         }
+        Ref::map(walk.last.borrow(), |l| &l.1)
+    }
+
+    /// The oracle's constants of primitive `id`, computed.
+    #[inline(never)]
+    fn make_oracle(&self, id: usize) -> Option<Oracle> {
         let eye = self.camera_eye;
-        let k = match self.scene.shapes.get(id) {
+        match self.scene.shapes.get(id) {
             Shape::Sphere { center, radius } => {
                 Some(Oracle::Sphere(SphereK::new(center, radius, eye)))
             }
@@ -102,16 +93,7 @@ impl Redecide<'_> {
                 TriangleK::triangle(&v, eye).map(|k| Oracle::plane(k.nrm, k.p, &self.tables))
             }
             Shape::Quad(v) => QuadK::quad(&v, eye).map(|k| Oracle::plane(k.nrm, k.p, &self.tables)),
-        };
-        walk.last.set((id + 1, k));
-        k
-    }
-
-    /// Whether the f32 hit at distance `t` on the primitive of `k` along pixel `(x, y)`'s ray
-    /// is within [`BUDGET`] of the oracle's distance for that primitive: lane 0 of
-    /// [`Redecide::verified_row`], so one lane and a row follow one rule.
-    fn verified(&self, k: Option<Oracle>, t: f32, (x, y): (usize, usize)) -> bool {
-        self.verified_row(&k, (x, y), [t; 4]) & 1 != 0
+        }
     }
 
     /// Which of the f32 hits `t` of the four pixels `x0..x0 + 4` of row `y` (past the image:
@@ -129,7 +111,12 @@ impl Redecide<'_> {
     /// again: an f32 edge decision differs from the oracle's only within its band (module
     /// comment, "Ids"), whatever the depth.
     #[inline(always)]
-    fn verified_row(&self, k: &Option<Oracle>, (x0, y): (usize, usize), t: [f32; 4]) -> u32 {
+    pub(super) fn verified_row(
+        &self,
+        k: &Option<Oracle>,
+        (x0, y): (usize, usize),
+        t: [f32; 4],
+    ) -> u32 {
         let tb = &self.tables;
         let sx = f64x4::new(std::array::from_fn(|i| {
             tb.sx[(x0 + i).min(tb.sx.len() - 1)]
@@ -176,10 +163,9 @@ mod tests {
     use crate::scene::{CameraSpec, Shapes};
     use crate::soa::Packed;
     use glam::DVec3;
-    use wide::f32x8;
 
     /// A hit beyond its primitive's limits is kept exactly when its distance is within
-    /// `BUDGET` of the oracle's for that primitive, measured one lane at a time and by rows.
+    /// `BUDGET` of the oracle's for that primitive, measured one lane alone and by groups of four, on one primitive or two.
     #[test]
     fn measured_hits_are_kept_only_within_the_budget() {
         // scene 7's far-reaching triangle (grazing far away) and a sphere far larger than its
@@ -216,15 +202,14 @@ mod tests {
         let packed = Packed::from_scene(&scene, camera.eye);
         let r = Redecide::new(&scene, &camera, &packed);
         let walk = r.walk(&packed, None, None);
-        let (mut kept, mut refused) = (0, 0);
-        for by in (0..48).step_by(2) {
-            for bx in (0..64).step_by(4) {
-                // the oracle's distance of each lane for each primitive, then f32 hits at it
-                // and at 2 BUDGET beyond it
-                for id in 0..2 {
-                    // the oracle's own kernel and constants for the primitive
-                    let t64: [Option<f64>; 8] = std::array::from_fn(|l| {
-                        let d = r.tables.dir_x1(bx + l % 4, by + l / 4);
+        let (mut kept, mut refused, mut mixed) = (0, 0, 0);
+        for y in 0..48 {
+            for x0 in (0..64).step_by(4) {
+                // the oracle's distance of each lane for each primitive, with the oracle's own
+                // kernel and constants
+                let t64: [[Option<f64>; 4]; 2] = std::array::from_fn(|id| {
+                    std::array::from_fn(|i| {
+                        let d = r.tables.dir_x1(x0 + i, y);
                         match scene.shapes.get(id) {
                             Shape::Sphere { center, radius } => {
                                 sphere_x1(&SphereK::new(center, radius, camera.eye), d)
@@ -234,28 +219,37 @@ mod tests {
                             }
                             Shape::Quad(_) => None,
                         }
-                    });
-                    let lanes: u32 = (0..8)
-                        .filter(|&l| t64[l].is_some())
-                        .fold(0, |m, l| m | 1 << l);
+                    })
+                });
+                // each primitive alone, then the two alternating lane by lane where both hit
+                let choices: [[usize; 4]; 3] = [[0; 4], [1; 4], [0, 1, 0, 1]];
+                for pick in choices {
+                    let lanes: u32 = (0..4)
+                        .filter(|&i| t64[pick[i]][i].is_some())
+                        .fold(0, |m, i| m | 1 << i);
                     if lanes == 0 {
                         continue;
                     }
+                    let id = pick.map(|p| p as f32);
+                    if (0..4).any(|i| lanes & (1 << i) != 0 && pick[i] == 1)
+                        && (0..4).any(|i| lanes & (1 << i) != 0 && pick[i] == 0)
+                    {
+                        mixed += 1;
+                    }
+                    // f32 hits at the oracle's distance, and at 2 BUDGET beyond it
                     for (scale, want_kept) in [(1.0, true), (1.0 + 2.0 * BUDGET, false)] {
-                        let t = t64.map(|t| t.map_or(f32::INFINITY, |t| (t * scale) as f32));
-                        let hit = Hit8 {
-                            t: f32x8::new(t),
-                            id: f32x8::splat(id as f32),
-                        };
-                        // rows (two or more lanes) and one lane at a time
+                        let t: [f32; 4] = std::array::from_fn(|i| {
+                            t64[pick[i]][i].map_or(f32::INFINITY, |t| (t * scale) as f32)
+                        });
+                        // the whole group and one lane alone
                         let single = 1 << lanes.trailing_zeros();
                         for mask in [lanes, single] {
-                            let left = r.recheck(&walk, (bx, by, 4), &hit, mask);
+                            let left = r.recheck_group(&walk, (x0, y), &t, &id, mask);
                             if want_kept {
-                                assert_eq!(left, 0, "id {id} at ({bx}, {by}) lanes {mask:08b}");
+                                assert_eq!(left, 0, "{pick:?} at ({x0}, {y}) lanes {mask:04b}");
                                 kept += mask.count_ones();
                             } else {
-                                assert_eq!(left, mask, "id {id} at ({bx}, {by})");
+                                assert_eq!(left, mask, "{pick:?} at ({x0}, {y})");
                                 refused += mask.count_ones();
                             }
                         }
@@ -263,6 +257,7 @@ mod tests {
                 }
             }
         }
+        assert!(mixed > 5, "{mixed} mixed groups");
         assert!(kept > 500 && refused > 500, "{kept} {refused}");
     }
 }
