@@ -106,6 +106,43 @@ impl Camera {
         (T::ONE - T::TWO * (T::from_f64(y as f64) + T::HALF) / h) * T::from_f64(self.half_h)
     }
 
+    /// A bound, in radians, on the angle between any pixel's f32 ray direction and its f64 one
+    /// ([`RayTables::dir_x1`] in each precision), to first order in u = 2^-24.
+    ///
+    /// With `v = f + sx r + sy u` (|v| = sqrt(1 + sx^2 + sy^2) >= 1, the basis orthonormal):
+    /// - the f32 tables' own rounding: the basis vectors moved by `Δf`, `Δr`, `Δu` move `v` by
+    ///   at most `|Δf| + |sx||Δr| + |sy||Δu| <= sqrt(|Δf|^2 + |Δr|^2 + |Δu|^2) |v|`
+    ///   (Cauchy-Schwarz), and the screen tables' `Δsx`, `Δsy` (computed in f32,
+    ///   [`Camera::sx`]) by `|Δsx| + |Δsy| <= (|Δsx| + |Δsy|) |v|`; both are measured here,
+    ///   exactly, against the f64 tables (whose own rounding is ~1e-16);
+    /// - the arithmetic `(f + sx r) + sy u`, two products and two sums per component,
+    ///   rounded: component i errs by at most `u (2|f_i| + 3|sx r_i| + 2|sy u_i|)`, so the vector
+    ///   by `u (2 + 3|sx| + 2|sy|) <= u sqrt(17) |v|`;
+    /// - the normalisation: the length's rounding scales every component alike (no turn),
+    ///   and the three divisions, each rounded, turn it by at most u.
+    ///
+    /// An error `e` turns `v` by at most `|e| / |v|`. So the angle is at most
+    /// `(sqrt(17) + 1) u + max |Δsx| + max |Δsy| + sqrt(|Δf|^2 + |Δr|^2 + |Δu|^2)`: about 6u to
+    /// 8u for fields of view up to 90 degrees (the screen tables' part grows with `half_w`).
+    /// The f32 direction's length differs from 1 by at most 3.5u (the sum of three squares:
+    /// 3u, halved by the square root, plus its rounding and the division's); that scales the
+    /// ray without turning it. `render::redecide` builds its trust rule on both, and its tests
+    /// check the rule against the kernels.
+    pub fn direction_error(&self) -> f64 {
+        let (t32, t64) = (self.tables::<f32>(1, 1), self.tables::<f64>(1, 1));
+        let worst = |a: &[f32], b: &[f64]| {
+            a.iter()
+                .zip(b)
+                .map(|(&a, &b)| (a as f64 - b).abs())
+                .fold(0.0, f64::max)
+        };
+        let moved =
+            |a: V3<f32>, b: V3<f64>| (0..3).map(|i| (a[i] as f64 - b[i]).powi(2)).sum::<f64>();
+        let basis = (moved(t32.f, t64.f) + moved(t32.r, t64.r) + moved(t32.u, t64.u)).sqrt();
+        let u = crate::real::U32;
+        (17f64.sqrt() + 1.0) * u + worst(&t32.sx, &t64.sx) + worst(&t32.sy, &t64.sy) + basis
+    }
+
     /// Per-column and per-row screen coordinates and the rounded basis, in `T`. Tables are
     /// padded to a multiple of `pad_x` columns and `pad_y` rows by repeating the last entry, so
     /// packet blocks at the image border read valid (masked) values.
@@ -232,5 +269,68 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Every pixel's f32 ray direction lies within [`Camera::direction_error`] of its f64 one,
+    /// and its length within 3.5u of 1, for cameras turned off the axes with narrow to wide
+    /// fields of view; and the bound is not loose by more than a few times.
+    #[test]
+    fn f32_directions_stay_within_the_stated_error() {
+        let u = crate::real::U32;
+        let specs = [
+            (
+                DVec3::new(0.3, -1.7, 5.2),
+                DVec3::new(-0.4, 0.9, -2.0),
+                DVec3::Y,
+            ),
+            (
+                DVec3::new(1e3, 2e3, -3e3),
+                DVec3::new(1e3 + 1.0, 2e3 - 0.3, -3e3 + 0.7),
+                DVec3::Z,
+            ),
+            (DVec3::ZERO, DVec3::new(0.0, 0.0, -1.0), DVec3::Y),
+        ];
+        let mut worst_ratio: f64 = 0.0;
+        for (eye, look, up) in specs {
+            let spec = CameraSpec {
+                eye,
+                look,
+                up,
+                fov_deg: None,
+            };
+            for (fov, w, h) in [
+                (20.0, 160, 90),
+                (60.0, 211, 117),
+                (90.0, 128, 128),
+                (150.0, 97, 61),
+            ] {
+                let cam = Camera::new(&spec, fov, w, h);
+                let bound = cam.direction_error();
+                let (t32, t64) = (cam.tables::<f32>(1, 1), cam.tables::<f64>(1, 1));
+                for y in 0..h as usize {
+                    for x in 0..w as usize {
+                        let (a, b) = (t32.dir_x1(x, y).map(f64::from), t64.dir_x1(x, y));
+                        let len = dot(a, a).sqrt();
+                        assert!((len - 1.0).abs() <= 3.5 * u, "length {len} at ({x}, {y})");
+                        let cross = [
+                            a[1] * b[2] - a[2] * b[1],
+                            a[2] * b[0] - a[0] * b[2],
+                            a[0] * b[1] - a[1] * b[0],
+                        ];
+                        let angle = dot(cross, cross).sqrt() / len;
+                        assert!(
+                            angle <= bound,
+                            "{angle:e} > {bound:e} at ({x}, {y}), fov {fov}"
+                        );
+                        worst_ratio = worst_ratio.max(angle / bound);
+                    }
+                }
+            }
+        }
+        assert!(
+            worst_ratio > 0.2,
+            "the bound is {:.1} times the worst angle",
+            1.0 / worst_ratio
+        );
     }
 }

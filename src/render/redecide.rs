@@ -7,32 +7,13 @@
 //!
 //! # When an f32 hit cannot be trusted
 //!
-//! u = 2^-24. The bounds below are first-order error bounds of the f32 kernels' distance `t`
-//! against the oracle's distance for the same primitive along the pixel's f64 ray. They add the
-//! kernel's own rounding (derived in `kernel::polygon`, `kernel::sphere`) and the change of
-//! the exact distance between the f32 ray and the f64 ray, whose directions differ by at most
-//! ~2u radians (`RayTables::dir_x1` in each precision). Every term is a worst case (errors of
-//! one sign, aligned), so a hit is re-decided when its bound exceeds 0.9 of [`TOLERANCE`]; the
-//! rest covers second-order terms and the rounding of a depth to the f32 output buffer (u/2).
-//!
-//! - Polygons: `t = p / (d . N)` with `cos = d . N = p / t` (p: the plane distance the kernel
-//!   used). `d . N` errs by ~4u absolute (kernel::polygon: 3-term dot product of rounded unit
-//!   vectors), so `t` by 4u / cos relative; the exact distance along a ray turned by `a`
-//!   radians changes by about `a tan(theta) <= a / cos` relative, 2u / cos here; `p` and the
-//!   division round twice. So `err <= u (2 + 6 t / p)`: grazing incidence, where `t` is many
-//!   times the plane's distance, is the failing case (the lab's `grazing` scene).
-//! - Spheres: the kernel returns `c / q` (eye outside) or `q` (eye inside), with
-//!   `q = b + s`, `b = oc . d`, `s = sqrt(disc)`, `c = |oc|^2 - r^2` rounded once from f64.
-//!   `b` errs by ~3u |oc|; `l = oc - b d` then errs by that error times `d`, which is
-//!   perpendicular to `l` and so leaves `l . l` unchanged to first order, plus one rounding of
-//!   each component (~u |oc| in all): `l . l` errs by ~2 r u |oc| + 3u r^2 <= 5u r |oc|
-//!   (|l| <= r <= |oc| for a hit from outside), and `disc` by ~8u r |oc| with the roundings of
-//!   `r^2` and of the difference, which moves `s` by 4u r |oc| / s. Turning the ray by 2u moves
-//!   `l` by 2u |oc| and `s` by up to 2u r |oc| / s: 6u, rounded up to 8u. So
-//!   `err <= u (5 + (3 |oc| + 8 r |oc| / s) / q)`, with `s = |b - t|` and `q = b + s`
-//!   recovered from the f32 hit (`t = b -+ s`). It grows towards the silhouette (`s -> 0`) and
-//!   for spheres far larger than their distance to the eye (`|oc| / q` large: the lab's
-//!   `ground`, a radius-1e4 sphere seen from 1.5 above), the two failing cases.
+//! [`bounds`] derives, for each kernel, a first-order bound on the relative error of its f32
+//! distance against the oracle's for the same primitive: the kernel's roundings plus the
+//! difference between the pixel's f32 and f64 rays (`Camera::direction_error`). For polygons
+//! it is `u (5.5 + (4 + a/u) t / p)` (`a`: the rays' angle, ~7u; grazing incidence fails); for
+//! spheres it grows towards the silhouette and for spheres far larger than their distance to
+//! the eye. Solved for `t` once per primitive in setup, they give the distances `[lo, hi]`
+//! within which an f32 hit is trusted.
 //!
 //! # Checked before re-deciding
 //!
@@ -71,32 +52,17 @@ use crate::kernel::methods::wide64::{Hit4d, dir_x4d};
 use crate::kernel::polygon::{QuadK, TriangleK};
 use crate::kernel::scalar::trace_x1;
 use crate::kernel::sphere::SphereK;
-use crate::real::{f32_down, f32_up};
 use crate::scene::Scene;
 use crate::soa::{Packed, Records, SceneRecords};
 use rayon::prelude::*;
 use std::cell::RefCell;
 use wide::{f32x8, f64x4};
 
+mod bounds;
 mod verify;
+pub use bounds::TOLERANCE;
+use bounds::{BUDGET, Bounds};
 use verify::Oracle;
-
-/// The guarantee of `--precision auto`: every pixel's depth is within this relative distance
-/// of the f64 oracle's depth for the same primitive.
-pub const TOLERANCE: f64 = 1e-5;
-
-/// f32 unit roundoff.
-const U: f64 = crate::real::U32;
-/// Polygon bound `u (POLY_A + POLY_B t / p)` (derived above).
-const POLY_A: f64 = 2.0;
-const POLY_B: f64 = 6.0;
-/// Sphere bound `u (SPHERE_A + (SPHERE_B |oc| + SPHERE_C r |oc| / s) / q)` (derived above).
-const SPHERE_A: f64 = 5.0;
-const SPHERE_B: f64 = 3.0;
-const SPHERE_C: f64 = 8.0;
-/// A hit is re-decided when its bound exceeds this (the bound adds worst cases; the rest of
-/// the tolerance covers second-order terms and the f32 output buffer's rounding, u/2).
-const BUDGET: f64 = 0.9 * TOLERANCE;
 
 /// What `--precision auto` needs beside the packet kernel's setup.
 pub struct Redecide<'s> {
@@ -179,66 +145,16 @@ impl Records<f64> for Cached<'_> {
     }
 }
 
-/// The distances at which a hit on a polygon with plane distance `p` is trusted:
-/// `u (POLY_A + POLY_B t / p) <= BUDGET`.
-fn polygon_limits(p: f32) -> [f32; 2] {
-    [0.0, f32_down(p as f64 * (BUDGET / U - POLY_A) / POLY_B)]
-}
-
-/// The distances at which a hit on the sphere (`oc`, `r2`, `c`: its f32 constants) is trusted.
-/// Along the rays that meet it, the bound of the module comment is a function of `t` alone
-/// (`t q = c` and `s = |q - t| / 2` by Vieta, the eye outside; `q = t`, `s = (t^2 - c) / 2t`,
-/// inside). Outside it grows from the centre ray to the silhouette, so the hits trusted are
-/// those up to a `t*`; inside it falls with `t`, so they are those from a `t*` on. `t*` is
-/// found by bisection (60 halvings), keeping the trusted side.
-fn sphere_limits(oc: [f32; 3], r2: f32, c: f32) -> [f32; 2] {
-    let len = oc.map(f64::from).iter().map(|x| x * x).sum::<f64>().sqrt();
-    let (r, c) = ((r2 as f64).sqrt(), c as f64);
-    let budget = BUDGET / U - SPHERE_A;
-    if c > 0.0 {
-        // excess over the budget at distance t (eye outside), increasing on (0, sqrt(c))
-        let excess = |t: f64| {
-            SPHERE_B * len * t / c + 2.0 * SPHERE_C * r * len * t * t / (c * (c - t * t)) - budget
-        };
-        let (mut lo, mut hi) = (0.0, c.sqrt());
-        for _ in 0..60 {
-            let mid = 0.5 * (lo + hi);
-            if excess(mid) <= 0.0 {
-                lo = mid
-            } else {
-                hi = mid
-            }
-        }
-        [0.0, f32_down(lo)]
-    } else {
-        // eye inside: decreasing in t over (0, r + |oc|]
-        let excess = |t: f64| SPHERE_B * len / t + 2.0 * SPHERE_C * r * len / (t * t - c) - budget;
-        let far = r + len;
-        if excess(far) > 0.0 {
-            return [f32::INFINITY, f32::INFINITY];
-        }
-        let (mut lo, mut hi) = (0.0, far);
-        for _ in 0..60 {
-            let mid = 0.5 * (lo + hi);
-            if excess(mid) <= 0.0 {
-                hi = mid
-            } else {
-                lo = mid
-            }
-        }
-        [f32_up(hi), f32::INFINITY]
-    }
-}
-
 impl<'s> Redecide<'s> {
     /// The trusted distances of every primitive of `packed` (which `scene` seen by `camera`
     /// was packed into), and the camera's f64 ray tables.
     pub fn new(scene: &'s Scene, camera: &Camera, packed: &Packed) -> Redecide<'s> {
+        let bounds = Bounds::new(camera.direction_error());
         let mut limits = vec![[0.0, f32::INFINITY]; scene.shapes.len()];
         let s = &packed.spheres;
         let spheres: Vec<[f32; 2]> = (0..s.len())
             .into_par_iter()
-            .map(|i| sphere_limits([s.ocx[i], s.ocy[i], s.ocz[i]], s.r2[i], s.c[i]))
+            .map(|i| bounds.sphere([s.ocx[i], s.ocy[i], s.ocz[i]], s.r2[i], s.c[i]))
             .collect();
         for (&id, l) in s.id.iter().zip(spheres) {
             limits[id as usize] = l;
@@ -248,7 +164,7 @@ impl<'s> Redecide<'s> {
             (&packed.quads.id, &packed.quads.p),
         ] {
             for (&id, &p) in ids.iter().zip(p) {
-                limits[id as usize] = polygon_limits(p);
+                limits[id as usize] = bounds.polygon(p);
             }
         }
         let ids: [&[f32]; 3] = [&packed.spheres.id, &packed.triangles.id, &packed.quads.id];
@@ -448,6 +364,9 @@ impl<'s> Redecide<'s> {
     /// primitive `id`: one lookup when they share a primitive (the common case).
     #[inline]
     fn outside(&self, t: &[f32; 4], id: &[f32; 4], lanes: u32) -> u32 {
+        if lanes == 0 {
+            return 0;
+        }
         // ids are exact in f32 and below `limits.len()`
         let limit = |id: f32| {
             self.limits
@@ -530,12 +449,19 @@ impl<'s> Redecide<'s> {
         if suspect == 0 {
             return 0;
         }
-        self.fix_suspects(walk, (bx, by, bw), hit, suspect)
+        // beyond a finite carried `hi`, a lane is untrusted as it stands; -inf (a primitive
+        // with a `lo`) needs its limits looked up
+        let lookup = carried
+            .simd_eq(f32x8::splat(f32::NEG_INFINITY))
+            .to_bitmask()
+            & suspect;
+        self.fix_suspects(walk, (bx, by, bw), hit, (suspect & !lookup, lookup))
     }
 
-    /// The rest of [`Redecide::fix_packet_carried`] for the lanes of `suspect` (bits), a
-    /// group of four pixels at a time ([`Redecide::fix_group`]): kept out of the packet loop,
-    /// which rarely comes here.
+    /// The rest of [`Redecide::fix_packet_carried`] for the lanes `untrusted` and `lookup`
+    /// (bits: beyond their trusted distance, and to be checked against their limits), a group
+    /// of four pixels at a time ([`Redecide::fix_group`]): kept out of the packet loop, which
+    /// rarely comes here.
     #[cold]
     #[inline(never)]
     fn fix_suspects(
@@ -543,18 +469,18 @@ impl<'s> Redecide<'s> {
         walk: &Walk,
         (bx, by, bw): (usize, usize, usize),
         hit: &mut Hit8,
-        suspect: u32,
+        (untrusted, lookup): (u32, u32),
     ) -> u32 {
         let (mut t, mut id) = (hit.t.to_array(), hit.id.to_array());
         let mut redone = 0;
         for g in (0..8).step_by(4) {
-            let lanes = (suspect >> g) & 0xF;
-            if lanes == 0 {
+            let (known, look) = ((untrusted >> g) & 0xF, (lookup >> g) & 0xF);
+            if known | look == 0 {
                 continue;
             }
             let mut gt: [f32; 4] = t[g..g + 4].try_into().expect("4 lanes");
             let mut gid: [f32; 4] = id[g..g + 4].try_into().expect("4 lanes");
-            let untrusted = self.outside(&gt, &gid, lanes);
+            let untrusted = known | self.outside(&gt, &gid, look);
             // lanes g..g + 4 are one row of four pixels (blocks 4 or 8 wide)
             let at = (bx + g % bw, by + g / bw);
             let m = self.fix_group(walk, at, &mut gt, &mut gid, untrusted);
