@@ -1,11 +1,12 @@
 //! `--precision auto`, the guarantee (README "Precision", `render::redecide`): with every
 //! acceleration, every pixel's depth is within 1e-5 relative of the f64 oracle's for the same
-//! primitive, and ids differ from the oracle's only within 1e-6 rad of a primitive's boundary
-//! or at genuine ties (both hit within 1e-5 relative). Checked on the lab's stress scenes, the
-//! seed scenes, and scenes written here for each class where f32 alone fails: rotated grazing
-//! quads, rotated grazing corridors, a huge sphere near its horizon (with and without the
-//! horizon in view), and tiny far triangles. Each failure class is also checked to fail with
-//! `--precision f32`, so the scenes do test what they claim.
+//! primitive, and ids differ from the oracle's only near a primitive's boundary or at genuine
+//! ties (both hit within 1e-5 relative). The band derived for "near" is `12u + a` of an edge
+//! plane (1.1e-6 rad at 60 degrees); these tests hold ids to the stricter 1e-6 rad. Checked on
+//! the lab's stress scenes, the seed scenes, and scenes written here for each class where f32
+//! alone fails: rotated grazing quads, rotated grazing corridors, a huge sphere near its horizon
+//! (with and without the horizon in view), and tiny far triangles. Each failure class is also
+//! checked to fail with `--precision f32`, so the scenes do test what they claim.
 
 mod common;
 

@@ -21,7 +21,8 @@ pub(super) const NEAR_PLANE_REL: f64 = 1e-6;
 /// Points this far behind the eye's plane (relative to their distance: a sine) cannot be hit
 /// by a forward ray: ~1e3 times the kernels' angular tolerance.
 pub(super) const BEHIND_REL: f64 = 1e-3;
-/// Angular margin around every primitive, radians: twice (8u edge tolerance + 8u ray error).
+/// Angular margin around every primitive, radians: twice (8u edge tolerance + 8u ray error;
+/// `Screen` takes more where `Camera::direction_error` exceeds 8u).
 pub(super) const ANGLE_MARGIN: f64 = 32.0 * U32;
 /// Margin of a projected point, pixels, for the f64 rounding of the projection itself (a few
 /// units of 1e-16 relative to coordinates of at most ~1e9 pixels in front of the near plane:
@@ -46,7 +47,11 @@ impl Screen {
     pub(super) fn new(c: &Camera) -> Screen {
         let stretch = 1.0 + c.half_w * c.half_w + c.half_h * c.half_h;
         let (w, h) = (c.width as f64, c.height as f64);
-        let px = |half: f64, n: f64| ANGLE_MARGIN * stretch / (2.0 * half / n) + PROJECTION_PX;
+        // twice (edge tolerance + this camera's ray error): 32u up to ~110 degrees of field of
+        // view, more beyond, where the f32 screen tables' rounding grows with `half_w`
+        let eps = f64::from(crate::kernel::edge_eps::<f32>());
+        let angle = ANGLE_MARGIN.max(2.0 * (eps + c.direction_error()));
+        let px = |half: f64, n: f64| angle * stretch / (2.0 * half / n) + PROJECTION_PX;
         Screen {
             eye: c.eye,
             f: c.f,

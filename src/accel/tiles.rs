@@ -12,7 +12,9 @@
 //!   A convex polygon entirely in front of the eye projects inside the box of its projected
 //!   vertices; a sphere inside the box of its camera-aligned bounding cube's 8 corners.
 //! - Margin. The kernels accept rays up to `edge_eps` = 8u radians outside an edge plane, and
-//!   the f32 ray directions err by a few u: 32u (1.9e-6 rad) covers both twice over. An angle
+//!   the f32 ray directions err by up to `Camera::direction_error` (about 7u at 60 degrees;
+//!   the f32 screen tables' part grows with `half_w`). The margin is twice their sum, at least
+//!   32u (1.9e-6 rad). An angle
 //!   `a` moves the screen coordinate by at most `a (1 + s^2)` (s = tan of the angle off the
 //!   axis, at most `half_w^2 + half_h^2` squared), which is turned into pixels, plus 1e-3 pixel
 //!   for the f64 rounding of the projection itself (under 1e-6 pixel). The rectangle holds the

@@ -7,7 +7,7 @@
 //!
 //! # When an f32 hit cannot be trusted
 //!
-//! [`bounds`] derives, for each kernel, a first-order bound on the relative error of its f32
+//! `bounds.rs` derives, for each kernel, a first-order bound on the relative error of its f32
 //! distance against the oracle's for the same primitive: the kernel's roundings plus the
 //! difference between the pixel's f32 and f64 rays (`Camera::direction_error`). For polygons
 //! it is `u (5.5 + (4 + a/u) t / p)` (`a`: the rays' angle, ~7u; grazing incidence fails); for
@@ -29,14 +29,19 @@
 //! whatever the depth. A sphere is measured with the oracle's kernel, and a ray it does not see
 //! meeting the sphere (at its silhouette) is re-decided.
 //!
-//! Ids: a re-decided pixel takes the oracle's id. An f32 pixel that is not re-decided keeps its
-//! id; it can differ from the oracle's only where the f32 edge tests (8u edge tolerance, ~2u
-//! ray error: under 1e-6 rad) or sphere silhouettes flip, or where two hits are within the
-//! trusted error of each other (a genuine tie, 1e-5 relative). Primitives that subtend less than
-//! ~1e-6 rad lie wholly inside that band, and eye-relative f64 setup keeps scenes far from the
-//! origin as precise as near it (the lab's `translated`), so neither needs a condition of its
-//! own. `tests/auto.rs` proves the guarantee against the oracle on the stress scenes and on
-//! scenes written for each failure class, with every acceleration.
+//! Ids: a re-decided pixel takes the oracle's id. An f32 pixel that is not re-decided keeps
+//! its id. It can differ from the oracle's only in two places:
+//! - where an f32 edge test or sphere silhouette flips. An f32 polygon accepts rays up to 8u
+//!   outside an edge plane, its dot product and rounded normal err by 4u, and the ray by `a`
+//!   (`Camera::direction_error`), so within `12u + a` of the edge (1.1e-6 rad at 60 degrees);
+//!   a silhouette moves by `6u + a`;
+//! - where two hits are within the trusted error of each other (a genuine tie, 1e-5 relative).
+//!
+//! Primitives that subtend less than ~1e-6 rad lie wholly inside that band. Eye-relative f64
+//! setup keeps scenes far from the origin as precise as near it (the lab's `translated`). So
+//! neither needs a condition of its own. `tests/auto.rs` checks the guarantee against the
+//! oracle, with every acceleration, on the stress scenes and on scenes written for each failure
+//! class. It holds ids to the stricter band of 1e-6 rad, and they pass.
 //!
 //! Cost: the bounds are solved for `t` once per primitive in setup (12 bytes per primitive).
 //! Through the tiles (the default) each lane carries the trusted distance of the primitive that
@@ -433,9 +438,11 @@ impl<'s> Redecide<'s> {
         }
     }
 
-    /// [`Redecide::fix_packet`] for a packet traced with each lane's trusted distance carried
-    /// along (`carried`: the `hi` of the primitive that won the lane, -inf where the primitive
-    /// has a lower limit too; [`Redecide::carried`]): only the lanes beyond it are looked up.
+    /// Checks the hits of the packet at pixel `(bx, by)` (`bw` pixels wide, lanes in rows),
+    /// traced with each lane's trusted distance carried along (`carried`: the `hi` of the
+    /// primitive that won the lane, -inf where the primitive has a lower limit too;
+    /// [`Redecide::carried`]), and decides again in f64 each lane that cannot be trusted.
+    /// Returns the lanes re-decided, as a bit mask.
     #[inline]
     pub(crate) fn fix_packet_carried(
         &self,
