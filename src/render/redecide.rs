@@ -307,18 +307,19 @@ impl<'s> Redecide<'s> {
             if untrusted == 0 {
                 return;
             }
+            // both halves measured, whatever their lanes: two independent chains, no branch
             let k = self.oracle(walk, first as usize);
-            for g in [x0, x0 + 4] {
-                let lanes = (untrusted >> (g - x0)) & 0xF;
-                if lanes == 0 {
-                    continue;
-                }
-                let mut t: [f32; 4] = depth[g..g + 4].try_into().expect("4 pixels");
-                let left = lanes & !self.verified_row(&k, (g, y), t);
-                if left != 0 {
-                    let mut id = [first as f32; 4];
-                    self.redo_group(walk, (g, y), &mut t, &mut id, left);
-                    self.write_back((g, y, width), (&t, &id), left, (ids, depth), mine);
+            let t: [f32; 8] = depth[x0..x0 + 8].try_into().expect("8 pixels");
+            let half = |h: usize| std::array::from_fn(|i| t[4 * h + i]);
+            let ok = self.verified_row(&k, (x0, y), half(0))
+                | self.verified_row(&k, (x0 + 4, y), half(1)) << 4;
+            let left = untrusted & !ok;
+            for h in 0..2 {
+                let lanes = (left >> (4 * h)) & 0xF;
+                if lanes != 0 {
+                    let (g, mut t, mut id) = (x0 + 4 * h, half(h), [first as f32; 4]);
+                    self.redo_group(walk, (g, y), &mut t, &mut id, lanes);
+                    self.write_back((g, y, width), (&t, &id), lanes, (ids, depth), mine);
                 }
             }
             return;

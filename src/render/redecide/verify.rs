@@ -118,9 +118,12 @@ impl Redecide<'_> {
         t: [f32; 4],
     ) -> u32 {
         let tb = &self.tables;
-        let sx = f64x4::new(std::array::from_fn(|i| {
-            tb.sx[(x0 + i).min(tb.sx.len() - 1)]
-        }));
+        let sx = match tb.sx.get(x0..x0 + 4) {
+            Some(four) => f64x4::new(four.try_into().expect("4 columns")),
+            None => f64x4::new(std::array::from_fn(|i| {
+                tb.sx[(x0 + i).min(tb.sx.len() - 1)]
+            })),
+        };
         let sy = f64x4::splat(tb.sy[y]);
         let t32 = f64x4::new(t.map(f64::from));
         match *k {
