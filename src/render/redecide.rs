@@ -46,13 +46,13 @@
 //! Cost: the bounds are solved for `t` once per primitive in setup (12 bytes per primitive).
 //! Through the tiles (the default) each lane carries the trusted distance of the primitive that
 //! won it, one blend per entry tested, so a packet's check is one compare; through the BVH or
-//! without acceleration the check looks each lane's limits up. A re-decision walks that
+//! without acceleration a finished strip is scanned against the least trusted distance, and
+//! only the pixels beyond it look their limits up (`check.rs`). A re-decision walks that
 //! pixel's candidates in f64.
 
 use crate::accel::bvh::{ranges_x4d, trace_bvh_x1, trace_bvh_x4d};
 use crate::accel::{Bvh, Tiles};
 use crate::camera::{Camera, RayTables};
-use crate::kernel::Hit8;
 use crate::kernel::methods::wide64::{Hit4d, dir_x4d};
 use crate::kernel::polygon::{QuadK, TriangleK};
 use crate::kernel::scalar::trace_x1;
@@ -61,9 +61,10 @@ use crate::scene::Scene;
 use crate::soa::{Packed, Records, SceneRecords};
 use rayon::prelude::*;
 use std::cell::RefCell;
-use wide::{f32x8, f64x4};
+use wide::f64x4;
 
 mod bounds;
+mod check;
 mod verify;
 pub use bounds::TOLERANCE;
 use bounds::{BUDGET, Bounds};
@@ -77,7 +78,7 @@ pub struct Redecide<'s> {
     /// trusted (the bounds above solved for `t` once per primitive; f32, rounded inward).
     limits: Vec<[f32; 2]>,
     /// A distance up to which a hit on any primitive is trusted (the least `hi`; -inf where
-    /// one needs `lo`): a packet whose hits are all nearer skips the per-lane check.
+    /// one needs `lo`): the strip scan looks up only the pixels beyond it.
     safe: f32,
     /// Per kind (sphere, triangle, quad), per index in the packed stores: the distance to
     /// carry with a lane that primitive wins ([`Redecide::carried`]).
@@ -218,291 +219,6 @@ impl<'s> Redecide<'s> {
             tiles,
             bvh,
         }
-    }
-
-    /// Checks the hits of a finished strip (`ids`, `depth`: whole rows of `width` pixels from
-    /// row `y_start`) and decides again in f64 each pixel whose hit lies outside its primitive's
-    /// trusted distances, noting its index in the image in `mine`. The scan reads eight
-    /// pixels per compare (a pixel nearer than `safe` needs no lookup), after the strip's
-    /// packets: the packet loop is the f32 one, unchanged (`--accel none` and `bvh`).
-    pub(crate) fn fix_strip(
-        &self,
-        walk: &Walk,
-        (y_start, width): (usize, usize),
-        ids: &mut [i32],
-        depth: &mut [f32],
-        mine: &mut Vec<usize>,
-    ) {
-        let (safe, inf) = (f32x8::splat(self.safe), f32x8::splat(f32::INFINITY));
-        for (r, (ids, depth)) in ids
-            .chunks_exact_mut(width)
-            .zip(depth.chunks_exact_mut(width))
-            .enumerate()
-        {
-            let y = y_start + r;
-            // sixteen pixels per branch: the scan runs over every pixel of the image
-            let suspects = |depth: &[f32], x0: usize| {
-                let d = f32x8::new(depth[x0..x0 + 8].try_into().expect("8 pixels"));
-                // background is +inf, and `safe` is below it
-                (d.simd_gt(safe) & d.simd_lt(inf)).to_bitmask()
-            };
-            let (pairs, whole) = (width / 16 * 16, width / 8 * 8);
-            for x0 in (0..pairs).step_by(16) {
-                let (a, b) = (suspects(depth, x0), suspects(depth, x0 + 8));
-                if a | b != 0 {
-                    for (x0, suspect) in [(x0, a), (x0 + 8, b)] {
-                        if suspect != 0 {
-                            let run = (x0, x0 + 8, y);
-                            self.fix_run(walk, run, ids, depth, suspect, width, mine);
-                        }
-                    }
-                }
-            }
-            if pairs < whole {
-                let suspect = suspects(depth, pairs);
-                if suspect != 0 {
-                    let run = (pairs, whole, y);
-                    self.fix_run(walk, run, ids, depth, suspect, width, mine);
-                }
-            }
-            if whole < width {
-                let suspect = (whole..width)
-                    .filter(|&x| depth[x] > self.safe && depth[x] < f32::INFINITY)
-                    .fold(0, |m, x| m | 1 << (x - whole));
-                if suspect != 0 {
-                    let run = (whole, width, y);
-                    self.fix_run(walk, run, ids, depth, suspect, width, mine);
-                }
-            }
-        }
-    }
-
-    /// The rest of [`Redecide::fix_strip`] for the pixels `x0..x1` (at most eight) of row `y`
-    /// of which `suspect` (bits from `x0`) lie beyond `safe`, in groups of four: kept out of
-    /// the scan.
-    #[inline(never)]
-    #[allow(clippy::too_many_arguments)]
-    fn fix_run(
-        &self,
-        walk: &Walk,
-        (x0, x1, y): (usize, usize, usize),
-        ids: &mut [i32],
-        depth: &mut [f32],
-        suspect: u32,
-        width: usize,
-        mine: &mut Vec<usize>,
-    ) {
-        let first = ids[x0 + suspect.trailing_zeros() as usize];
-        if x1 - x0 == 8 && self.one_primitive(&ids[x0..x1], first, suspect) {
-            // one primitive under every suspect pixel (the common case): one lookup, one
-            // compare, and the oracle's constants fetched once for the eight
-            let [lo, hi] = self
-                .limits
-                .get(first as usize)
-                .copied()
-                .unwrap_or([0.0, f32::INFINITY]);
-            let d = f32x8::new(depth[x0..x0 + 8].try_into().expect("8 pixels"));
-            let out = d.simd_lt(f32x8::splat(lo)) | d.simd_gt(f32x8::splat(hi));
-            let untrusted = suspect & out.to_bitmask();
-            if untrusted == 0 {
-                return;
-            }
-            // both halves measured, whatever their lanes: two independent chains, no branch
-            let k = self.oracle(walk, first as usize);
-            let t: [f32; 8] = depth[x0..x0 + 8].try_into().expect("8 pixels");
-            let half = |h: usize| std::array::from_fn(|i| t[4 * h + i]);
-            let ok = self.verified_row(&k, (x0, y), half(0))
-                | self.verified_row(&k, (x0 + 4, y), half(1)) << 4;
-            let left = untrusted & !ok;
-            for h in 0..2 {
-                let lanes = (left >> (4 * h)) & 0xF;
-                if lanes != 0 {
-                    let (g, mut t, mut id) = (x0 + 4 * h, half(h), [first as f32; 4]);
-                    self.redo_group(walk, (g, y), &mut t, &mut id, lanes);
-                    self.write_back((g, y, width), (&t, &id), lanes, (ids, depth), mine);
-                }
-            }
-            return;
-        }
-        for g in (x0..x1).step_by(4) {
-            let lanes = (suspect >> (g - x0)) & 0xF;
-            if lanes == 0 {
-                continue;
-            }
-            let n = (x1 - g).min(4);
-            let mut t = std::array::from_fn(|i| if i < n { depth[g + i] } else { 0.0 });
-            let mut id = std::array::from_fn(|i| if i < n { ids[g + i] as f32 } else { -1.0 });
-            let untrusted = self.outside(&t, &id, lanes);
-            let redone = self.fix_group(walk, (g, y), &mut t, &mut id, untrusted);
-            self.write_back((g, y, width), (&t, &id), redone, (ids, depth), mine);
-        }
-    }
-
-    /// Whether every pixel of `suspect` (bits) among the eight `ids` holds primitive `first`
-    /// (compared all eight at once).
-    #[inline(always)]
-    fn one_primitive(&self, ids: &[i32], first: i32, suspect: u32) -> bool {
-        let ids: [i32; 8] = ids.try_into().expect("8 pixels");
-        let same = (0..8).fold(0, |m, i| m | u32::from(ids[i] == first) << i);
-        suspect & !same == 0
-    }
-
-    /// Writes the lanes `lanes` (bits) of the group at pixel `(x0, y)` (`t`, `id`) into their
-    /// row (`ids`, `depth`) and notes their indices in the `width`-wide image in `mine`.
-    fn write_back(
-        &self,
-        (x0, y, width): (usize, usize, usize),
-        (t, id): (&[f32; 4], &[f32; 4]),
-        lanes: u32,
-        (ids, depth): (&mut [i32], &mut [f32]),
-        mine: &mut Vec<usize>,
-    ) {
-        let mut m = lanes;
-        while m != 0 {
-            let i = m.trailing_zeros() as usize;
-            (depth[x0 + i], ids[x0 + i]) = (t[i], id[i] as i32);
-            mine.push(y * width + x0 + i);
-            m &= m - 1;
-        }
-    }
-
-    /// The lanes of `lanes` (bits) whose hit `t` lies outside the trusted distances of its
-    /// primitive `id`: one lookup when they share a primitive (the common case).
-    #[inline]
-    fn outside(&self, t: &[f32; 4], id: &[f32; 4], lanes: u32) -> u32 {
-        if lanes == 0 {
-            return 0;
-        }
-        // ids are exact in f32 and below `limits.len()`
-        let limit = |id: f32| {
-            self.limits
-                .get(id as usize)
-                .copied()
-                .unwrap_or([0.0, f32::INFINITY])
-        };
-        let first = id[lanes.trailing_zeros() as usize % 4];
-        let one = (0..4).all(|i| lanes & (1 << i) == 0 || id[i] == first);
-        let lim: [[f32; 2]; 4] = if one {
-            [limit(first); 4]
-        } else {
-            std::array::from_fn(|i| limit(id[i]))
-        };
-        (0..4)
-            .filter(|&i| lanes & (1 << i) != 0 && (t[i] < lim[i][0] || t[i] > lim[i][1]))
-            .fold(0, |m, i| m | 1 << i)
-    }
-
-    /// Measures the `untrusted` lanes (bits) of the four pixels `x0..x0 + 4` of row `y`
-    /// ([`Redecide::recheck_group`]) and decides again in f64 those that stay untrusted,
-    /// writing the oracle's answers into `t` and `id`. Returns those lanes.
-    #[inline]
-    fn fix_group(
-        &self,
-        walk: &Walk,
-        (x0, y): (usize, usize),
-        t: &mut [f32; 4],
-        id: &mut [f32; 4],
-        untrusted: u32,
-    ) -> u32 {
-        if untrusted == 0 {
-            return 0;
-        }
-        let left = self.recheck_group(walk, (x0, y), t, id, untrusted);
-        if left != 0 {
-            self.redo_group(walk, (x0, y), t, id, left);
-        }
-        left
-    }
-
-    /// Decides again in f64 the lanes `lanes` (bits) of the four pixels `x0..x0 + 4` of row
-    /// `y`, writing the oracle's answers into `t` and `id`.
-    #[inline(never)]
-    fn redo_group(
-        &self,
-        walk: &Walk,
-        (x0, y): (usize, usize),
-        t: &mut [f32; 4],
-        id: &mut [f32; 4],
-        lanes: u32,
-    ) {
-        if lanes.count_ones() >= ROW_MIN {
-            // f64x4 lanes: each lane is the oracle's answer, bit for bit
-            let (rt, rid) = self.trace_row(walk, (x0, y), lanes);
-            for i in 0..4 {
-                if lanes & (1 << i) != 0 {
-                    (t[i], id[i]) = (rt[i], rid[i]);
-                }
-            }
-        } else {
-            let i = lanes.trailing_zeros() as usize;
-            (t[i], id[i]) = self.trace(walk, (x0 + i, y));
-        }
-    }
-
-    /// Checks the hits of the packet at pixel `(bx, by)` (`bw` pixels wide, lanes in rows),
-    /// traced with each lane's trusted distance carried along (`carried`: the `hi` of the
-    /// primitive that won the lane, -inf where the primitive has a lower limit too;
-    /// [`Redecide::carried`]), and decides again in f64 each lane that cannot be trusted.
-    /// Returns the lanes re-decided, as a bit mask.
-    #[inline]
-    pub(crate) fn fix_packet_carried(
-        &self,
-        walk: &Walk,
-        (bx, by, bw): (usize, usize, usize),
-        hit: &mut Hit8,
-        carried: f32x8,
-    ) -> u32 {
-        let hits = hit.id.simd_ge(f32x8::ZERO);
-        let suspect = (hits & hit.t.simd_gt(carried)).to_bitmask();
-        if suspect == 0 {
-            return 0;
-        }
-        // beyond a finite carried `hi`, a lane is untrusted as it stands; -inf (a primitive
-        // with a `lo`) needs its limits looked up
-        let lookup = carried
-            .simd_eq(f32x8::splat(f32::NEG_INFINITY))
-            .to_bitmask()
-            & suspect;
-        self.fix_suspects(walk, (bx, by, bw), hit, (suspect & !lookup, lookup))
-    }
-
-    /// The rest of [`Redecide::fix_packet_carried`] for the lanes `untrusted` and `lookup`
-    /// (bits: beyond their trusted distance, and to be checked against their limits), a group
-    /// of four pixels at a time ([`Redecide::fix_group`]): kept out of the packet loop, which
-    /// rarely comes here.
-    #[cold]
-    #[inline(never)]
-    fn fix_suspects(
-        &self,
-        walk: &Walk,
-        (bx, by, bw): (usize, usize, usize),
-        hit: &mut Hit8,
-        (untrusted, lookup): (u32, u32),
-    ) -> u32 {
-        let (mut t, mut id) = (hit.t.to_array(), hit.id.to_array());
-        let mut redone = 0;
-        for g in (0..8).step_by(4) {
-            let (known, look) = ((untrusted >> g) & 0xF, (lookup >> g) & 0xF);
-            if known | look == 0 {
-                continue;
-            }
-            let mut gt: [f32; 4] = t[g..g + 4].try_into().expect("4 lanes");
-            let mut gid: [f32; 4] = id[g..g + 4].try_into().expect("4 lanes");
-            let untrusted = known | self.outside(&gt, &gid, look);
-            // lanes g..g + 4 are one row of four pixels (blocks 4 or 8 wide)
-            let at = (bx + g % bw, by + g / bw);
-            let m = self.fix_group(walk, at, &mut gt, &mut gid, untrusted);
-            if m != 0 {
-                t[g..g + 4].copy_from_slice(&gt);
-                id[g..g + 4].copy_from_slice(&gid);
-                redone |= m << g;
-            }
-        }
-        if redone != 0 {
-            hit.t = f32x8::new(t);
-            hit.id = f32x8::new(id);
-        }
-        redone
     }
 
     /// The trusted distance to carry for a lane won by primitive `index` of kind `kind`
