@@ -158,10 +158,7 @@ impl<'s> Redecide<'s> {
         let bounds = Bounds::new(camera.direction_error());
         let mut limits = vec![[0.0, f32::INFINITY]; scene.shapes.len()];
         let s = &packed.spheres;
-        let spheres: Vec<[f32; 2]> = (0..s.len())
-            .into_par_iter()
-            .map(|i| bounds.sphere([s.ocx[i], s.ocy[i], s.ocz[i]], s.r2[i], s.c[i]))
-            .collect();
+        let spheres = bounds.spheres(s);
         for (&id, l) in s.id.iter().zip(spheres) {
             limits[id as usize] = l;
         }
