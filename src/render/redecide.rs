@@ -171,8 +171,8 @@ impl<'s> Redecide<'s> {
             }
         }
         let ids: [&[f32]; 3] = [&packed.spheres.id, &packed.triangles.id, &packed.quads.id];
-        // the least `hi` over the scene (-inf if any primitive needs `lo`): a packet whose hits
-        // are all nearer needs no lookup (the BVH and no acceleration; tiles carry each lane's)
+        // the least `hi` over the scene (-inf if any primitive needs `lo`): a pixel nearer
+        // needs no lookup (the strip scan: the BVH and no acceleration; tiles carry each lane's)
         let safe = ids
             .iter()
             .flat_map(|v| v.iter())
