@@ -223,17 +223,27 @@ pub(crate) fn packet_blocks<const BW: usize>(
         }
     };
     // Writes a block's results into its strip (`by`: the block's first row in the strip).
-    let store = |ids: &mut [i32], depth: &mut [f32], bx: usize, by: usize, hit: &Hit8| {
-        let rows = ids.len() / width;
-        let (t, id) = (hit.t.to_array(), hit.id.to_array());
-        for lane in 0..LANES {
-            let (x, y) = (bx + lane % BW, by + lane / BW);
-            if x < width && y < rows {
-                ids[y * width + x] = id[lane] as i32;
-                depth[y * width + x] = t[lane];
+    // (`rows`: the strip's rows; whole blocks are written a row of `BW` pixels at a time)
+    let store =
+        |(ids, depth): (&mut [i32], &mut [f32]), rows: usize, bx: usize, by: usize, hit: &Hit8| {
+            // ids are exact small integers in the lanes: truncation is `as i32`
+            let (t, id) = (hit.t.to_array(), hit.id.trunc_int().to_array());
+            if bx + BW <= width && by + LANES / BW <= rows {
+                for r in 0..LANES / BW {
+                    let at = (by + r) * width + bx;
+                    ids[at..at + BW].copy_from_slice(&id[r * BW..(r + 1) * BW]);
+                    depth[at..at + BW].copy_from_slice(&t[r * BW..(r + 1) * BW]);
+                }
+                return;
             }
-        }
-    };
+            for lane in 0..LANES {
+                let (x, y) = (bx + lane % BW, by + lane / BW);
+                if x < width && y < rows {
+                    ids[y * width + x] = id[lane];
+                    depth[y * width + x] = t[lane];
+                }
+            }
+        };
     match &p.tiles {
         // Tile by tile: each tile's list is split once into its packets' lists.
         Some(tiles) if BW == BLOCK_W => {
@@ -270,7 +280,7 @@ pub(crate) fn packet_blocks<const BW: usize>(
                                 }
                                 None => tiles.trace_packet_x8(&p.packed, &lists, k, &d, &mut hit),
                             }
-                            store(ids, depth, bx, by, &hit);
+                            store((ids, depth), rows, bx, by, &hit);
                         }
                     }
                 }
@@ -286,7 +296,7 @@ pub(crate) fn packet_blocks<const BW: usize>(
                     let mut hit = Hit8::new(active);
                     let y = y_start + by;
                     p.trace_x8([bx, y, bx + BW - 1, y + LANES / BW - 1], &d, &mut hit);
-                    store(ids, depth, bx, by, &hit);
+                    store((ids, depth), rows, bx, by, &hit);
                 }
             }
             // auto: the finished strip's hits checked, and re-decided where untrusted
