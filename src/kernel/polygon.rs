@@ -90,8 +90,7 @@ impl<const N: usize> PolyK<f64, N> {
             return None;
         }
         let s = facing.signum();
-        let nrm = raw_normal.normalize() * s;
-        let p = rel.iter().map(|r| r.dot(nrm)).sum::<f64>() / N as f64;
+        let (nrm, p) = Self::oriented_plane(&rel, raw_normal, s);
         // An edge subtending less than `limits::MIN_EDGE_ANGLE` from the eye has no reliable
         // plane: its cross product is rounding noise (or zero), and a wrong or zero normal
         // passes every ray on one side (an endless wedge). Such a polygon is never drawn.
@@ -114,6 +113,25 @@ impl<const N: usize> PolyK<f64, N> {
         })
     }
 
+    /// The unit plane normal oriented by `s` (the side the eye is on) and the plane distance,
+    /// from the eye-relative vertices `rel`: [`PolyK::new`]'s `nrm` and `p`.
+    #[inline]
+    fn oriented_plane(rel: &[DVec3; N], raw_normal: DVec3, s: f64) -> (DVec3, f64) {
+        let nrm = raw_normal.normalize() * s;
+        let p = rel.iter().map(|r| r.dot(nrm)).sum::<f64>() / N as f64;
+        (nrm, p)
+    }
+
+    /// [`PolyK::new`]'s `nrm` and `p` alone, bit for bit (the same operations), without the
+    /// edge planes or the checks: for a polygon `new` accepted (`--precision auto` measures a
+    /// hit against its plane).
+    pub fn plane(v: &[DVec3; N], raw_normal: DVec3, eye: DVec3) -> (V3<f64>, f64) {
+        let rel = v.map(|p| p - eye);
+        let s = rel[0].dot(raw_normal).signum();
+        let (nrm, p) = Self::oriented_plane(&rel, raw_normal, s);
+        (v3(nrm), p)
+    }
+
     /// The same constants rounded to `T`.
     pub fn cast<T: Real>(&self) -> PolyK<T, N> {
         let r = |a: V3<f64>| a.map(T::from_f64);
@@ -129,7 +147,16 @@ impl TriangleK<f64> {
     /// Constants of triangle `v` (A, B, C) seen from `eye`, normal (B - A) x (C - A); `None`
     /// as for [`PolyK::new`].
     pub fn triangle(v: &[DVec3; 3], eye: DVec3) -> Option<TriangleK<f64>> {
-        PolyK::new(v, (v[1] - v[0]).cross(v[2] - v[0]), eye)
+        PolyK::new(v, Self::raw_normal(v), eye)
+    }
+
+    /// The triangle's `nrm` and `p` alone ([`PolyK::plane`]).
+    pub fn triangle_plane(v: &[DVec3; 3], eye: DVec3) -> (V3<f64>, f64) {
+        PolyK::plane(v, Self::raw_normal(v), eye)
+    }
+
+    fn raw_normal(v: &[DVec3; 3]) -> DVec3 {
+        (v[1] - v[0]).cross(v[2] - v[0])
     }
 }
 
@@ -137,7 +164,16 @@ impl QuadK<f64> {
     /// Constants of quad `v` (A, B, C, D in perimeter order) seen from `eye`, normal
     /// (C - A) x (D - B) from the diagonals; `None` as for [`PolyK::new`].
     pub fn quad(v: &[DVec3; 4], eye: DVec3) -> Option<QuadK<f64>> {
-        PolyK::new(v, (v[2] - v[0]).cross(v[3] - v[1]), eye)
+        PolyK::new(v, Self::raw_normal(v), eye)
+    }
+
+    /// The quad's `nrm` and `p` alone ([`PolyK::plane`]).
+    pub fn quad_plane(v: &[DVec3; 4], eye: DVec3) -> (V3<f64>, f64) {
+        PolyK::plane(v, Self::raw_normal(v), eye)
+    }
+
+    fn raw_normal(v: &[DVec3; 4]) -> DVec3 {
+        (v[2] - v[0]).cross(v[3] - v[1])
     }
 }
 
@@ -297,6 +333,38 @@ mod tests {
             TriangleK::triangle(&v, near).is_some(),
             "1e-6 rad edges are drawn"
         );
+    }
+
+    /// `PolyK::plane` is `PolyK::new`'s plane, bit for bit, for triangles and quads seen from
+    /// either side and far from the origin.
+    #[test]
+    fn plane_alone_is_the_constants_plane() {
+        let mut x = 0x9E37_79B9_7F4A_7C15u64;
+        let mut unit = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        let mut checked = 0;
+        for _ in 0..500 {
+            let base = DVec3::new(unit(), unit(), unit()) * 1e4;
+            let eye = base + DVec3::new(unit(), unit(), unit()) * 20.0;
+            let mut v = || base + DVec3::new(unit(), unit(), unit()) * 3.0;
+            let tri = [v(), v(), v()];
+            if let Some(k) = TriangleK::triangle(&tri, eye) {
+                assert_eq!(TriangleK::triangle_plane(&tri, eye), (k.nrm, k.p));
+                checked += 1;
+            }
+            // a planar quad: a parallelogram
+            let (a, b, c) = (v(), v(), v());
+            let quad = [a, b, c, a + c - b];
+            if let Some(k) = QuadK::quad(&quad, eye) {
+                assert_eq!(QuadK::quad_plane(&quad, eye), (k.nrm, k.p));
+                checked += 1;
+            }
+        }
+        assert!(checked > 900, "{checked}");
     }
 
     #[test]

@@ -92,9 +92,11 @@ pub struct Redecide<'s> {
 /// mostly meet the same primitives).
 pub(crate) struct Walk<'a> {
     records: Cached<'a>,
-    /// The oracle's constants of the primitive last measured by [`Redecide::verified`], keyed
-    /// by its id + 1 (0: none yet): neighbouring lanes mostly hit the same primitive.
-    last: RefCell<(usize, Option<Oracle>)>,
+    /// The oracle's constants of the primitives measured so far ([`Redecide::oracle`]):
+    /// direct-mapped, slot `id % ORACLE_SLOTS` keyed by `id + 1` (0: empty), allocated on the
+    /// first measurement. A primitive's suspect pixels come back packet after packet along
+    /// a strip, with other primitives' between them.
+    oracles: RefCell<Vec<(usize, Option<Oracle>)>>,
     tiles: Option<&'a Tiles>,
     bvh: Option<&'a Bvh>,
 }
@@ -102,6 +104,9 @@ pub(crate) struct Walk<'a> {
 /// From this many untrusted lanes in a packet on, its rows are decided again in f64x4 lanes
 /// rather than one ray at a time.
 const ROW_MIN: u32 = 2;
+
+/// Slots of a strip's cache of the oracle's measurement constants (direct-mapped by id).
+const ORACLE_SLOTS: usize = 64;
 
 /// Slots per kind in a strip's record cache (direct-mapped by index).
 const CACHE_SLOTS: usize = 256;
@@ -212,7 +217,7 @@ impl<'s> Redecide<'s> {
                 triangles: RefCell::new(Vec::new()),
                 quads: RefCell::new(Vec::new()),
             },
-            last: RefCell::new((0, None)),
+            oracles: RefCell::new(Vec::new()),
             tiles,
             bvh,
         }

@@ -3,7 +3,7 @@
 //! oracle's own kernel for that primitive, along the pixel's f64 ray, puts it within
 //! [`BUDGET`] of its distance.
 
-use super::{BUDGET, Redecide, Walk};
+use super::{BUDGET, ORACLE_SLOTS, Redecide, Walk};
 use crate::kernel::methods::wide64::{dir_x4d, sphere_x4d};
 use crate::kernel::polygon::{QuadK, TriangleK};
 use crate::kernel::sphere::SphereK;
@@ -71,14 +71,24 @@ impl Redecide<'_> {
     }
 
     /// The oracle's constants of primitive `id` (`None`: a polygon seen edge-on, never hit),
-    /// from the walk's one-entry cache, borrowed in place (neighbouring lanes mostly hit the
-    /// same primitive; a copy out of the cache cost more than the measurement).
+    /// from the walk's cache, borrowed in place (a copy out of the cache cost more than the
+    /// measurement).
     #[inline]
     pub(super) fn oracle<'w>(&self, walk: &'w Walk, id: usize) -> Ref<'w, Option<Oracle>> {
-        if walk.last.borrow().0 != id + 1 {
-            *walk.last.borrow_mut() = (id + 1, self.make_oracle(id));
+        let slot = id % ORACLE_SLOTS;
+        let hit = walk
+            .oracles
+            .borrow()
+            .get(slot)
+            .is_some_and(|s| s.0 == id + 1);
+        if !hit {
+            let mut slots = walk.oracles.borrow_mut();
+            if slots.is_empty() {
+                slots.resize(ORACLE_SLOTS, (0, None));
+            }
+            slots[slot] = (id + 1, self.make_oracle(id));
         }
-        Ref::map(walk.last.borrow(), |l| &l.1)
+        Ref::map(walk.oracles.borrow(), |v| &v[slot].1)
     }
 
     /// The oracle's constants of primitive `id`, computed.
@@ -89,10 +99,15 @@ impl Redecide<'_> {
             Shape::Sphere { center, radius } => {
                 Some(Oracle::Sphere(SphereK::new(center, radius, eye)))
             }
+            // the plane alone: only a polygon the oracle accepts has f32 constants to hit
             Shape::Triangle(v) => {
-                TriangleK::triangle(&v, eye).map(|k| Oracle::plane(k.nrm, k.p, &self.tables))
+                let (nrm, p) = TriangleK::triangle_plane(&v, eye);
+                Some(Oracle::plane(nrm, p, &self.tables))
             }
-            Shape::Quad(v) => QuadK::quad(&v, eye).map(|k| Oracle::plane(k.nrm, k.p, &self.tables)),
+            Shape::Quad(v) => {
+                let (nrm, p) = QuadK::quad_plane(&v, eye);
+                Some(Oracle::plane(nrm, p, &self.tables))
+            }
         }
     }
 
