@@ -28,7 +28,7 @@ use crate::kernel::{Hit8, LANES};
 use crate::real::Real;
 use crate::soa::{Packed, Prepared};
 use rayon::prelude::*;
-use redecide::Redecide;
+use redecide::{Pending, Redecide};
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use wide::f32x8;
@@ -205,15 +205,7 @@ pub(crate) fn packet_blocks<const BW: usize>(
     // A strip's walk of re-decisions (auto).
     let walk = || redo.map(|r| (r, r.walk(&p.packed, p.tiles.as_ref(), p.bvh.as_ref())));
     let redone = Mutex::new(Vec::new());
-    // Re-decides the block's untrusted lanes (auto), noting their pixels in `mine`.
-    // Notes the pixels of the lanes `m` (bits) of the block at (bx, y) in `mine`.
-    let note_lanes = |mut m: u32, bx: usize, y: usize, mine: &mut Vec<usize>| {
-        while m != 0 {
-            let lane = m.trailing_zeros() as usize;
-            mine.push((y + lane / BW) * width + bx + lane % BW);
-            m &= m - 1;
-        }
-    };
+    // Adds a strip's re-decided pixels (auto) to the frame's.
     let note = |mine: Vec<usize>| {
         if !mine.is_empty() {
             redone
@@ -251,6 +243,7 @@ pub(crate) fn packet_blocks<const BW: usize>(
                 let rows = ids.len() / width;
                 let mut lists = PacketLists::default();
                 let (mut mine, walk) = (Vec::new(), walk());
+                let mut pending = Vec::new();
                 for tx in 0..width.div_ceil(TILE_W) {
                     let tile = (tx, y_start / TILE_H);
                     tiles.split_tile(tile, &mut lists);
@@ -266,7 +259,7 @@ pub(crate) fn packet_blocks<const BW: usize>(
                             let k = by / BLOCK_H * (TILE_W / BLOCK_W) + col;
                             match &walk {
                                 // auto: each lane carries its winner's trusted distance
-                                Some((r, w)) => {
+                                Some((r, _)) => {
                                     let mut carried = f32x8::splat(f32::INFINITY);
                                     let won = |kind: usize, i: usize, take: f32x8| {
                                         carried =
@@ -275,14 +268,25 @@ pub(crate) fn packet_blocks<const BW: usize>(
                                     tiles.trace_packet_x8_with(
                                         &p.packed, &lists, k, &d, &mut hit, won,
                                     );
-                                    let m = r.fix_packet_carried(w, (bx, y, BW), &mut hit, carried);
-                                    note_lanes(m, bx, y, &mut mine);
+                                    let (untrusted, lookup) = r.suspects_carried(&hit, carried);
+                                    if untrusted | lookup != 0 {
+                                        pending.push(Pending {
+                                            bx,
+                                            by,
+                                            untrusted,
+                                            lookup,
+                                        });
+                                    }
                                 }
                                 None => tiles.trace_packet_x8(&p.packed, &lists, k, &d, &mut hit),
                             }
                             store((ids, depth), rows, bx, by, &hit);
                         }
                     }
+                }
+                // auto: the strip's packets with lanes to check, all at once
+                if let Some((r, w)) = &walk {
+                    r.fix_pending(w, (y_start, width), (ids, depth), &pending, &mut mine);
                 }
                 note(mine);
             })

@@ -3,13 +3,15 @@
 //! measurement fails, decided again in f64, a group of four pixels of a row at a time.
 //!
 //! - Through the tiles: each packet's lanes carry the trusted distance of their winner, so a
-//!   packet's check is one compare ([`Redecide::fix_packet_carried`]).
+//!   packet's check is one compare ([`Redecide::suspects_carried`]); the few packets with
+//!   lanes to check are checked at the end of the strip ([`Redecide::fix_pending`]).
 //! - Through the BVH, or without acceleration: the finished strip is scanned, eight pixels per
 //!   compare, against the least trusted distance in the scene ([`Redecide::fix_strip`]), and
 //!   the packet loop is the f32 one, unchanged.
 
 use super::{ROW_MIN, Redecide, Walk};
-use crate::kernel::Hit8;
+use crate::kernel::packet::BLOCK_W;
+use crate::kernel::{Hit8, LANES};
 use wide::f32x8;
 
 impl Redecide<'_> {
@@ -232,69 +234,77 @@ impl Redecide<'_> {
         }
     }
 
-    /// Checks the hits of the packet at pixel `(bx, by)` (`bw` pixels wide, lanes in rows),
-    /// traced with each lane's trusted distance carried along (`carried`: the `hi` of the
-    /// primitive that won the lane, -inf where the primitive has a lower limit too;
-    /// [`Redecide::carried`]), and decides again in f64 each lane that cannot be trusted.
-    /// Returns the lanes re-decided, as a bit mask.
-    #[inline]
-    pub(crate) fn fix_packet_carried(
-        &self,
-        walk: &Walk,
-        (bx, by, bw): (usize, usize, usize),
-        hit: &mut Hit8,
-        carried: f32x8,
-    ) -> u32 {
+    /// The lanes of a packet traced with each lane's trusted distance carried along
+    /// (`carried`: the `hi` of the primitive that won the lane, -inf where the primitive has a
+    /// lower limit too; [`Redecide::carried`]) that need a check, as bits: those beyond a
+    /// finite `hi`, untrusted as they stand, and those on a primitive with a `lo`, whose limits
+    /// must be looked up. `(0, 0)` for most packets: one compare.
+    #[inline(always)]
+    pub(crate) fn suspects_carried(&self, hit: &Hit8, carried: f32x8) -> (u32, u32) {
         let hits = hit.id.simd_ge(f32x8::ZERO);
         let suspect = (hits & hit.t.simd_gt(carried)).to_bitmask();
         if suspect == 0 {
-            return 0;
+            return (0, 0);
         }
-        // beyond a finite carried `hi`, a lane is untrusted as it stands; -inf (a primitive
-        // with a `lo`) needs its limits looked up
         let lookup = carried
             .simd_eq(f32x8::splat(f32::NEG_INFINITY))
             .to_bitmask()
             & suspect;
-        self.fix_suspects(walk, (bx, by, bw), hit, (suspect & !lookup, lookup))
+        (suspect & !lookup, lookup)
     }
 
-    /// The rest of [`Redecide::fix_packet_carried`] for the lanes `untrusted` and `lookup`
-    /// (bits: beyond their trusted distance, and to be checked against their limits), a group
-    /// of four pixels at a time ([`Redecide::fix_group`]): kept out of the packet loop, which
-    /// rarely comes here.
-    #[cold]
-    #[inline(never)]
-    fn fix_suspects(
+    /// Checks the suspect lanes of a finished strip's packets (`pending`, from
+    /// [`Redecide::suspects_carried`]; `ids`, `depth`: whole rows of `width` pixels from row
+    /// `y_start`) and decides again in f64 each that cannot be trusted, noting its index in the
+    /// image in `mine`. Each suspect's shape is read first, all of them before any is used: the
+    /// reads are independent, so their cache misses overlap (checked as they came, packet by
+    /// packet, each paid a whole miss: most of a suspect's cost on 65,536 random primitives).
+    pub(crate) fn fix_pending(
         &self,
         walk: &Walk,
-        (bx, by, bw): (usize, usize, usize),
-        hit: &mut Hit8,
-        (untrusted, lookup): (u32, u32),
-    ) -> u32 {
-        let (mut t, mut id) = (hit.t.to_array(), hit.id.to_array());
-        let mut redone = 0;
-        for g in (0..8).step_by(4) {
-            let (known, look) = ((untrusted >> g) & 0xF, (lookup >> g) & 0xF);
-            if known | look == 0 {
-                continue;
-            }
-            let mut gt: [f32; 4] = t[g..g + 4].try_into().expect("4 lanes");
-            let mut gid: [f32; 4] = id[g..g + 4].try_into().expect("4 lanes");
-            let untrusted = known | self.outside(&gt, &gid, look);
-            // lanes g..g + 4 are one row of four pixels (blocks 4 or 8 wide)
-            let at = (bx + g % bw, by + g / bw);
-            let m = self.fix_group(walk, at, &mut gt, &mut gid, untrusted);
-            if m != 0 {
-                t[g..g + 4].copy_from_slice(&gt);
-                id[g..g + 4].copy_from_slice(&gid);
-                redone |= m << g;
+        (y_start, width): (usize, usize),
+        (ids, depth): (&mut [i32], &mut [f32]),
+        pending: &[Pending],
+        mine: &mut Vec<usize>,
+    ) {
+        let lane_at = |p: &Pending, l: usize| (p.by + l / BLOCK_W) * width + p.bx + l % BLOCK_W;
+        for p in pending {
+            let mut m = p.untrusted | p.lookup;
+            while m != 0 {
+                let id = ids[lane_at(p, m.trailing_zeros() as usize)];
+                std::hint::black_box(self.scene.shapes.get(id as usize));
+                m &= m - 1;
             }
         }
-        if redone != 0 {
-            hit.t = f32x8::new(t);
-            hit.id = f32x8::new(id);
+        for p in pending {
+            for row in 0..LANES / BLOCK_W {
+                let g = BLOCK_W * row;
+                let (known, look) = ((p.untrusted >> g) & 0xF, (p.lookup >> g) & 0xF);
+                if known | look == 0 {
+                    continue;
+                }
+                let y = p.by + row;
+                let ids = &mut ids[y * width..(y + 1) * width];
+                let depth = &mut depth[y * width..(y + 1) * width];
+                let n = (width - p.bx).min(4);
+                let mut t = std::array::from_fn(|i| if i < n { depth[p.bx + i] } else { 0.0 });
+                let mut id =
+                    std::array::from_fn(|i| if i < n { ids[p.bx + i] as f32 } else { -1.0 });
+                let untrusted = known | self.outside(&t, &id, look);
+                let at = (p.bx, y_start + y);
+                let m = self.fix_group(walk, at, &mut t, &mut id, untrusted);
+                self.write_back((p.bx, y_start + y, width), (&t, &id), m, (ids, depth), mine);
+            }
         }
-        redone
     }
+}
+
+/// A packet of a strip with lanes to check ([`Redecide::fix_pending`]): its first pixel
+/// (`by`: the row within the strip) and its lanes as bits.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Pending {
+    pub(crate) bx: usize,
+    pub(crate) by: usize,
+    pub(crate) untrusted: u32,
+    pub(crate) lookup: u32,
 }
