@@ -205,7 +205,7 @@ fn sphere_inputs(oc: [f32; 3], r2: f32, c: f32) -> (f64, f64, f64) {
 mod tests {
     use super::*;
     use crate::camera::Camera;
-    use crate::kernel::polygon::{QuadK, TriangleK, polygon_x1};
+    use crate::kernel::polygon::{PolyK, QuadK, TriangleK, polygon_x1};
     use crate::kernel::sphere::{SphereK, sphere_x1};
     use crate::scene::CameraSpec;
     use glam::{DMat3, DVec3};
@@ -252,6 +252,14 @@ mod tests {
         (worst, n)
     }
 
+    /// [`check`] of the polygon bound for the polygon of constants `k64` through `cam`.
+    fn polygon_case<const N: usize>(cam: &Camera, k64: PolyK<f64, N>) -> (f64, usize) {
+        let bounds = Bounds::new(cam.direction_error());
+        let k32 = k64.cast::<f32>();
+        let bound = |t: f64| bounds.polygon_error(k32.p as f64, t);
+        check(cam, |d| polygon_x1(&k32, d), |d| polygon_x1(&k64, d), bound)
+    }
+
     #[test]
     fn polygon_bound_holds_at_grazing_incidence() {
         let tilt = DMat3::from_axis_angle(DVec3::new(1.0, 2.0, 3.0).normalize(), 0.3);
@@ -269,30 +277,14 @@ mod tests {
         let (mut worst, mut n): (f64, usize) = (0.0, 0);
         for fov in [30.0, 60.0, 100.0] {
             let cam = camera(eye, eye + tilt * DVec3::new(0.2, -0.1, -1.0), fov);
-            let bounds = Bounds::new(cam.direction_error());
             for quad in [ground, wall] {
                 let k64 = QuadK::quad(&quad, eye).expect("seen face-on enough");
-                let k32 = k64.cast::<f32>();
-                let bound = |t: f64| bounds.polygon_error(k32.p as f64, t);
-                let (w, m) = check(
-                    &cam,
-                    |d| polygon_x1(&k32, d),
-                    |d| polygon_x1(&k64, d),
-                    bound,
-                );
+                let (w, m) = polygon_case(&cam, k64);
                 (worst, n) = (worst.max(w), n + m);
             }
             let cam = camera(DVec3::ZERO, DVec3::new(0.0, 0.0, -1.0), fov);
-            let bounds = Bounds::new(cam.direction_error());
             let k64 = TriangleK::triangle(&tri, DVec3::ZERO).expect("a triangle");
-            let k32 = k64.cast::<f32>();
-            let bound = |t: f64| bounds.polygon_error(k32.p as f64, t);
-            let (w, m) = check(
-                &cam,
-                |d| polygon_x1(&k32, d),
-                |d| polygon_x1(&k64, d),
-                bound,
-            );
+            let (w, m) = polygon_case(&cam, k64);
             (worst, n) = (worst.max(w), n + m);
         }
         assert!(n > 50_000, "{n} pixels checked");
