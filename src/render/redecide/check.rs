@@ -91,11 +91,7 @@ impl Redecide<'_> {
         if x1 - x0 == 8 && self.one_primitive(&ids[x0..x1], first, suspect) {
             // one primitive under every suspect pixel (the common case): one lookup, one
             // compare, and the oracle's constants fetched once for the eight
-            let [lo, hi] = self
-                .limits
-                .get(first as usize)
-                .copied()
-                .unwrap_or([0.0, f32::INFINITY]);
+            let [lo, hi] = self.limit(first as f32);
             let d = f32x8::new(depth[x0..x0 + 8].try_into().expect("8 pixels"));
             let out = d.simd_lt(f32x8::splat(lo)) | d.simd_gt(f32x8::splat(hi));
             let untrusted = suspect & out.to_bitmask();
@@ -121,16 +117,31 @@ impl Redecide<'_> {
         }
         for g in (x0..x1).step_by(4) {
             let lanes = (suspect >> (g - x0)) & 0xF;
-            if lanes == 0 {
-                continue;
-            }
-            let n = (x1 - g).min(4);
-            let mut t = std::array::from_fn(|i| if i < n { depth[g + i] } else { 0.0 });
-            let mut id = std::array::from_fn(|i| if i < n { ids[g + i] as f32 } else { -1.0 });
-            let untrusted = self.outside(&t, &id, lanes);
-            let redone = self.fix_group(walk, (g, y), &mut t, &mut id, untrusted);
-            self.write_back((g, y, width), (&t, &id), redone, (ids, depth), mine);
+            self.check_group(walk, (g, y, width), (ids, depth), (0, lanes), mine);
         }
+    }
+
+    /// Checks the pixels `x0..x0 + 4` of row `y` (`ids`, `depth`: that row, `width` wide; past
+    /// its end, none): the lanes `known` (bits) are untrusted as they stand, those of `look`
+    /// once their limits say so ([`Redecide::outside`]). Those are measured, and the ones that
+    /// stay untrusted are decided again in f64, written back and noted in `mine`.
+    fn check_group(
+        &self,
+        walk: &Walk,
+        (x0, y, width): (usize, usize, usize),
+        (ids, depth): (&mut [i32], &mut [f32]),
+        (known, look): (u32, u32),
+        mine: &mut Vec<usize>,
+    ) {
+        if known | look == 0 {
+            return;
+        }
+        let n = (width - x0).min(4);
+        let mut t = std::array::from_fn(|i| if i < n { depth[x0 + i] } else { 0.0 });
+        let mut id = std::array::from_fn(|i| if i < n { ids[x0 + i] as f32 } else { -1.0 });
+        let untrusted = known | self.outside(&t, &id, look);
+        let redone = self.fix_group(walk, (x0, y), &mut t, &mut id, untrusted);
+        self.write_back((x0, y, width), (&t, &id), redone, (ids, depth), mine);
     }
 
     /// Whether every pixel of `suspect` (bits) among the eight `ids` holds primitive `first`
@@ -161,6 +172,16 @@ impl Redecide<'_> {
         }
     }
 
+    /// The trusted distances `[lo, hi]` of primitive `id` (exact in f32, below `limits.len()`
+    /// for a hit; anything else is trusted everywhere, as background is).
+    #[inline(always)]
+    fn limit(&self, id: f32) -> [f32; 2] {
+        self.limits
+            .get(id as usize)
+            .copied()
+            .unwrap_or([0.0, f32::INFINITY])
+    }
+
     /// The lanes of `lanes` (bits) whose hit `t` lies outside the trusted distances of its
     /// primitive `id`: one lookup when they share a primitive (the common case).
     #[inline]
@@ -168,19 +189,12 @@ impl Redecide<'_> {
         if lanes == 0 {
             return 0;
         }
-        // ids are exact in f32 and below `limits.len()`
-        let limit = |id: f32| {
-            self.limits
-                .get(id as usize)
-                .copied()
-                .unwrap_or([0.0, f32::INFINITY])
-        };
         let first = id[lanes.trailing_zeros() as usize % 4];
         let one = (0..4).all(|i| lanes & (1 << i) == 0 || id[i] == first);
         let lim: [[f32; 2]; 4] = if one {
-            [limit(first); 4]
+            [self.limit(first); 4]
         } else {
-            std::array::from_fn(|i| limit(id[i]))
+            std::array::from_fn(|i| self.limit(id[i]))
         };
         (0..4)
             .filter(|&i| lanes & (1 << i) != 0 && (t[i] < lim[i][0] || t[i] > lim[i][1]))
@@ -279,21 +293,13 @@ impl Redecide<'_> {
         for p in pending {
             for row in 0..LANES / BLOCK_W {
                 let g = BLOCK_W * row;
-                let (known, look) = ((p.untrusted >> g) & 0xF, (p.lookup >> g) & 0xF);
-                if known | look == 0 {
-                    continue;
-                }
+                let lanes = ((p.untrusted >> g) & 0xF, (p.lookup >> g) & 0xF);
                 let y = p.by + row;
-                let ids = &mut ids[y * width..(y + 1) * width];
-                let depth = &mut depth[y * width..(y + 1) * width];
-                let n = (width - p.bx).min(4);
-                let mut t = std::array::from_fn(|i| if i < n { depth[p.bx + i] } else { 0.0 });
-                let mut id =
-                    std::array::from_fn(|i| if i < n { ids[p.bx + i] as f32 } else { -1.0 });
-                let untrusted = known | self.outside(&t, &id, look);
-                let at = (p.bx, y_start + y);
-                let m = self.fix_group(walk, at, &mut t, &mut id, untrusted);
-                self.write_back((p.bx, y_start + y, width), (&t, &id), m, (ids, depth), mine);
+                let rows = (
+                    &mut ids[y * width..(y + 1) * width],
+                    &mut depth[y * width..(y + 1) * width],
+                );
+                self.check_group(walk, (p.bx, y_start + y, width), rows, lanes, mine);
             }
         }
     }
