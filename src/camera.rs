@@ -327,6 +327,7 @@ mod tests {
                 }
             }
         }
+        eprintln!("largest angle / direction_error {worst_ratio:.2}");
         assert!(
             worst_ratio > 0.2,
             "the bound is {:.1} times the worst angle",
