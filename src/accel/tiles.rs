@@ -87,6 +87,7 @@ use crate::kernel::{Hit, Hit8};
 use crate::real::{Real, V3};
 use crate::soa::Packed;
 use crate::soa::Records;
+use rayon::prelude::*;
 use wide::{f32x8, f64x4};
 
 /// Tile width in pixels: two packets of 4x2. Measured against 16 and 32 (README, "Acceleration"):
@@ -109,13 +110,42 @@ struct Entry {
     near: f32,
     /// Kind (top two bits) and index into that kind's packed store.
     prim: u32,
-    /// The tile's packets (bits, packet `k` at column `k % 2`, row `k / 2`) whose rays the
-    /// kernel may accept: those the primitive's rectangle overlaps, less those `PacketCones`
-    /// finds out of reach.
-    packets: u8,
+    /// Low 8 bits: the tile's packets (bits, packet `k` at column `k % 2`, row `k / 2`) whose
+    /// rays the kernel may accept: those the primitive's rectangle overlaps, less those
+    /// `PacketCones` finds out of reach. High 24 bits: the top 24 bits of the f32 value the
+    /// caller attached to the primitive ([`Tiles::attach`]; +inf until then), handed back with
+    /// the lanes the primitive wins. Kept in the entry the walk already reads, it costs no
+    /// memory access of its own.
+    word: u32,
 }
 
 const _: () = assert!(std::mem::size_of::<Entry>() == 12);
+
+/// The bits of [`Entry::word`] holding the packets.
+const PACKETS_MASK: u32 = 0xFF;
+
+impl Entry {
+    fn new(near: f32, prim: u32, packets: u8) -> Entry {
+        Entry {
+            near,
+            prim,
+            word: (f32::INFINITY.to_bits() & !PACKETS_MASK) | u32::from(packets),
+        }
+    }
+
+    /// The tile's packets the entry may reach (bits).
+    #[inline(always)]
+    fn packets(&self) -> u32 {
+        self.word & PACKETS_MASK
+    }
+
+    /// The value attached to the primitive ([`Tiles::attach`]), its f32 bits below the top 24
+    /// cleared: rounded toward zero.
+    #[inline(always)]
+    fn attached(&self) -> f32 {
+        f32::from_bits(self.word & !PACKETS_MASK)
+    }
+}
 
 /// Per-tile lists of primitives, nearest first.
 #[derive(Debug, Clone)]
@@ -149,7 +179,7 @@ impl Tiles {
             if !hit.t.simd_ge(f32x8::splat(e.near)).any() {
                 return;
             }
-            if u32::from(e.packets) & block == 0 {
+            if e.packets() & block == 0 {
                 continue;
             }
             test_entry(p, e, d, hit);
@@ -173,7 +203,7 @@ impl Tiles {
         for (i, e) in list.iter().enumerate() {
             for k in 0..PACKETS {
                 lists.index[k * n + lists.len[k]] = i as u32;
-                lists.len[k] += (e.packets >> k & 1) as usize;
+                lists.len[k] += (e.packets() >> k & 1) as usize;
             }
         }
     }
@@ -191,12 +221,13 @@ impl Tiles {
         d: &[f32x8; 3],
         hit: &mut Hit8,
     ) {
-        self.trace_packet_x8_with(p, lists, k, d, hit, |_, _, _| {})
+        self.trace_packet_x8_with(p, lists, k, d, hit, |_, _| {})
     }
 
-    /// [`Tiles::trace_packet_x8`], calling `won(kind, index, lanes)` after each entry tested
-    /// with the lanes it took (`--precision auto` carries each lane's trusted distance that
-    /// way; a no-op compiles away).
+    /// [`Tiles::trace_packet_x8`], calling `won(attached, lanes)` after each entry tested with
+    /// the value attached to its primitive ([`Tiles::attach`]) and the lanes it took
+    /// (`--precision auto` carries each lane's trusted distance that way; a no-op compiles
+    /// away).
     #[inline(always)]
     pub fn trace_packet_x8_with(
         &self,
@@ -205,7 +236,7 @@ impl Tiles {
         k: usize,
         d: &[f32x8; 3],
         hit: &mut Hit8,
-        mut won: impl FnMut(usize, usize, f32x8),
+        mut won: impl FnMut(f32, f32x8),
     ) {
         let list = self.list(lists.tile.0, lists.tile.1);
         for &i in &lists.index[k * lists.stride..][..lists.len[k]] {
@@ -214,12 +245,24 @@ impl Tiles {
                 return;
             }
             let take = test_entry(p, e, d, hit);
-            won(
+            won(e.attached(), take);
+        }
+    }
+
+    /// Attaches `value(kind, index)` to every primitive (kind 0 sphere, 1 triangle, 2 quad;
+    /// index into that kind's packed store), to be handed back by
+    /// [`Tiles::trace_packet_x8_with`] with the lanes the primitive wins. Stored in 24 bits:
+    /// the f32 with its low 8 bits cleared, rounded toward zero by at most 2^-15 relative
+    /// (±inf, ±0 exactly). `--precision auto` attaches each primitive's trusted distance,
+    /// which rounding down only makes safer.
+    pub fn attach(&mut self, value: impl Fn(usize, usize) -> f32 + Sync) {
+        self.entries.par_iter_mut().for_each(|e| {
+            let v = value(
                 (e.prim >> KIND_SHIFT) as usize,
                 (e.prim & INDEX_MASK) as usize,
-                take,
             );
-        }
+            e.word = (v.to_bits() & !PACKETS_MASK) | e.packets();
+        });
     }
 }
 
@@ -289,7 +332,7 @@ impl Tiles {
             if !goes_on(hit, e.near) {
                 return;
             }
-            if u32::from(e.packets) & span == 0 {
+            if e.packets() & span == 0 {
                 continue;
             }
             visit(hit, e.prim >> KIND_SHIFT, (e.prim & INDEX_MASK) as usize);

@@ -243,7 +243,8 @@ pub(crate) fn packet_blocks<const BW: usize>(
                 let rows = ids.len() / width;
                 let mut lists = PacketLists::default();
                 let (mut mine, walk) = (Vec::new(), walk());
-                let mut pending = Vec::new();
+                // (sized for the few packets with suspects a strip usually has)
+                let mut pending = Vec::with_capacity(if walk.is_some() { 64 } else { 0 });
                 for tx in 0..width.div_ceil(TILE_W) {
                     let tile = (tx, y_start / TILE_H);
                     tiles.split_tile(tile, &mut lists);
@@ -261,14 +262,13 @@ pub(crate) fn packet_blocks<const BW: usize>(
                                 // auto: each lane carries its winner's trusted distance
                                 Some((r, _)) => {
                                     let mut carried = f32x8::splat(f32::INFINITY);
-                                    let won = |kind: usize, i: usize, take: f32x8| {
-                                        carried =
-                                            take.select(f32x8::splat(r.carried(kind, i)), carried)
+                                    let won = |hi: f32, take: f32x8| {
+                                        carried = take.select(f32x8::splat(hi), carried)
                                     };
                                     tiles.trace_packet_x8_with(
                                         &p.packed, &lists, k, &d, &mut hit, won,
                                     );
-                                    let (untrusted, lookup) = r.suspects_carried(&hit, carried);
+                                    let (untrusted, lookup) = r.suspects_carried(hit.t, carried);
                                     if untrusted | lookup != 0 {
                                         pending.push(Pending {
                                             bx,

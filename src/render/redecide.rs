@@ -43,9 +43,11 @@
 //! oracle, with every acceleration, on the stress scenes and on scenes written for each failure
 //! class. It holds ids to the stricter band of 1e-6 rad, and they pass.
 //!
-//! Cost: the bounds are solved for `t` once per primitive in setup (12 bytes per primitive).
+//! Cost: the bounds are solved for `t` once per primitive in setup (8 bytes per primitive).
 //! Through the tiles (the default) each lane carries the trusted distance of the primitive that
-//! won it, one blend per entry tested, so a packet's check is one compare; through the BVH or
+//! won it, kept in the top 24 bits of the tile entry the walk already reads (`Tiles::attach`,
+//! rounded down), one blend per entry tested, so a packet's check is one compare; through the
+//! BVH or
 //! without acceleration a finished strip is scanned against the least trusted distance, and
 //! only the pixels beyond it look their limits up (`check.rs`). A re-decision walks that
 //! pixel's candidates in f64.
@@ -59,7 +61,6 @@ use crate::kernel::scalar::trace_x1;
 use crate::kernel::sphere::SphereK;
 use crate::scene::Scene;
 use crate::soa::{Packed, Records, SceneRecords};
-use rayon::prelude::*;
 use std::cell::RefCell;
 use wide::f64x4;
 
@@ -81,11 +82,14 @@ pub struct Redecide<'s> {
     /// A distance up to which a hit on any primitive is trusted (the least `hi`; -inf where
     /// one needs `lo`): the strip scan looks up only the pixels beyond it.
     safe: f32,
-    /// Per kind (sphere, triangle, quad), per index in the packed stores: the distance to
-    /// carry with a lane that primitive wins ([`Redecide::carried`]).
-    carried: [Vec<f32>; 3],
     /// The oracle's f64 ray tables, padded to whole 4x2 blocks (`dir_x1` is the oracle's ray).
     tables: RayTables<f64>,
+}
+
+/// The trusted distance a lane won by a primitive with limits `[lo, hi]` carries: its `hi`, or
+/// -inf when it has a `lo` too (the lane's limits are then looked up).
+fn carry([lo, hi]: [f32; 2]) -> f32 {
+    if lo > 0.0 { f32::NEG_INFINITY } else { hi }
 }
 
 /// Where a strip's re-decisions walk: the packet kernel's structure, over f64 records of its
@@ -176,31 +180,18 @@ impl<'s> Redecide<'s> {
                 limits[id as usize] = bounds.polygon(p);
             }
         }
-        let ids: [&[f32]; 3] = [&packed.spheres.id, &packed.triangles.id, &packed.quads.id];
         // the least `hi` over the scene (-inf if any primitive needs `lo`): a pixel nearer
         // needs no lookup (the strip scan: the BVH and no acceleration; tiles carry each lane's)
-        let safe = ids
+        let safe = [&packed.spheres.id, &packed.triangles.id, &packed.quads.id]
             .iter()
             .flat_map(|v| v.iter())
-            .map(|&id| match limits[id as usize] {
-                [lo, _] if lo > 0.0 => f32::NEG_INFINITY,
-                [_, hi] => hi,
-            })
+            .map(|&id| carry(limits[id as usize]))
             .fold(f32::INFINITY, f32::min);
-        let carried = ids.map(|v| {
-            v.par_iter()
-                .map(|&id| match limits[id as usize] {
-                    [lo, _] if lo > 0.0 => f32::NEG_INFINITY,
-                    [_, hi] => hi,
-                })
-                .collect()
-        });
         Redecide {
             scene,
             camera_eye: camera.eye,
             limits,
             safe,
-            carried,
             tables: camera.tables(4, 2),
         }
     }
@@ -224,11 +215,12 @@ impl<'s> Redecide<'s> {
         }
     }
 
-    /// The trusted distance to carry for a lane won by primitive `index` of kind `kind`
-    /// (0 sphere, 1 triangle, 2 quad): its `hi`, or -inf when it also has a `lo`.
-    #[inline(always)]
-    pub(crate) fn carried(&self, kind: usize, index: usize) -> f32 {
-        self.carried[kind][index]
+    /// Attaches to each primitive of `tiles` (built over `packed`) the trusted distance a lane
+    /// it wins carries ([`carry`]): the tile entries hand it to the packet walk with the lanes
+    /// their primitive takes.
+    pub(crate) fn attach_to(&self, tiles: &mut Tiles, packed: &Packed) {
+        let ids = [&packed.spheres.id, &packed.triangles.id, &packed.quads.id];
+        tiles.attach(|kind, i| carry(self.limits[ids[kind][i] as usize]));
     }
 
     /// The oracle's hits for the pixels `x0..x0 + 4` of row `y` in the lanes of `lanes` (bits),

@@ -95,8 +95,11 @@ impl<'s> Renderer<'s> {
         camera: &crate::camera::Camera,
         accel: Accel,
     ) -> Renderer<'s> {
-        let p = PacketScene::new(scene, camera, accel);
+        let mut p = PacketScene::new(scene, camera, accel);
         let redecide = Redecide::new(scene, camera, &p.packed);
+        if let Some(tiles) = &mut p.tiles {
+            redecide.attach_to(tiles, &p.packed);
+        }
         let tables = camera.tables(BLOCK_W as u32, BLOCK_H as u32);
         Renderer {
             width: camera.width as usize,

@@ -189,11 +189,7 @@ impl Tiles {
             .map(|s| {
                 let s = s.into_inner();
                 let e = &prints[(s & ((1 << PACKETS_SHIFT) - 1)) as usize];
-                Entry {
-                    near: e.near,
-                    prim: e.prim,
-                    packets: (s >> PACKETS_SHIFT) as u8,
-                }
+                Entry::new(e.near, e.prim, (s >> PACKETS_SHIFT) as u8)
             })
             .collect();
         drop(prints);

@@ -110,9 +110,9 @@ fn kernels_accept_rays_only_in_their_packets_and_beyond_near() {
                         });
                         let k = y % TILE_H / BLOCK_H * (TILE_W / BLOCK_W) + x % TILE_W / BLOCK_W;
                         assert!(
-                            e.packets >> k & 1 == 1,
+                            e.packets() >> k & 1 == 1,
                             "seed {seed}: kind {kind} #{i} hit at ({x}, {y}), packet {k} not in {:08b}",
-                            e.packets
+                            e.packets()
                         );
                         assert!(t >= e.near, "seed {seed}: t {t} < near {}", e.near);
                     }
@@ -158,7 +158,7 @@ fn split_tile_keeps_the_entries_reaching_each_packet() {
                 let x0 = tx * TILE_W + k % (TILE_W / BLOCK_W) * BLOCK_W;
                 let y0 = ty * TILE_H + k / (TILE_W / BLOCK_W) * BLOCK_H;
                 let named: Vec<u32> = (0..list.len() as u32)
-                    .filter(|&i| list[i as usize].packets >> k & 1 == 1)
+                    .filter(|&i| list[i as usize].packets() >> k & 1 == 1)
                     .collect();
                 let got = &lists.index[k * lists.stride..][..lists.len[k]];
                 assert_eq!(got, &named[..], "tile ({tx}, {ty}) packet {k}");
@@ -287,4 +287,86 @@ fn stores_already_in_screen_order_are_kept() {
             if kept { "strip" } else { "scattered" }
         );
     }
+}
+
+/// `attach` keeps each entry's packets, stores the value rounded toward zero by at most 2^-15
+/// relative (infinities and zero exactly), and the packet walk hands each tested entry's value
+/// back with the lanes it took: a lane's last value is that of the primitive that won it.
+#[test]
+fn attached_values_are_rounded_down_and_follow_the_winner() {
+    let eye = DVec3::new(0.3, 0.2, 1.0);
+    let scene = scene(4, eye, DVec3::new(0.0, 0.0, -3.0), 60.0);
+    let camera = Camera::new(&scene.camera, 60.0, 64, 48);
+    let mut packed = Packed::new(&Prepared::new(&scene, eye));
+    let (mut tiles, order) = Tiles::new(&scene, &packed, &camera);
+    packed.permute(&order);
+    let before = tiles.entries.clone();
+    // a value per primitive: every sign of infinity, zero and finite values of many scales
+    let value = |kind: usize, i: usize| match (kind * 7 + i) % 5 {
+        0 => f32::INFINITY,
+        1 => f32::NEG_INFINITY,
+        2 => 0.0,
+        _ => (1.0 + i as f32 * 0.123_456_7) * 10f32.powi(i as i32 % 9 - 4),
+    };
+    tiles.attach(value);
+    for (e, b) in tiles.entries.iter().zip(&before) {
+        assert_eq!(e.packets(), b.packets());
+        assert_eq!(b.attached(), f32::INFINITY, "+inf until attached");
+        let (kind, i) = (
+            (e.prim >> KIND_SHIFT) as usize,
+            (e.prim & INDEX_MASK) as usize,
+        );
+        let (v, got) = (value(kind, i), e.attached());
+        if v.is_infinite() || v == 0.0 {
+            assert_eq!(got, v);
+        } else {
+            assert!(
+                got <= v && got >= v * (1.0 - 2f32.powi(-15)),
+                "{v} stored as {got}"
+            );
+        }
+    }
+    // each lane's carried value is its winner's, through the packets' own lists
+    let tables = camera.tables::<f32>(BLOCK_W as u32, BLOCK_H as u32);
+    let ids = [&packed.spheres.id, &packed.triangles.id, &packed.quads.id];
+    let (mut lists, mut checked) = (PacketLists::default(), 0);
+    for ty in 0..48 / TILE_H {
+        for tx in 0..64 / TILE_W {
+            tiles.split_tile((tx, ty), &mut lists);
+            for k in 0..PACKETS {
+                let (x0, y0) = (tx * TILE_W + k % 2 * BLOCK_W, ty * TILE_H + k / 2 * BLOCK_H);
+                let d: [f32x8; 3] = std::array::from_fn(|c| {
+                    f32x8::new(std::array::from_fn(|l| {
+                        tables.dir_x1(x0 + l % BLOCK_W, y0 + l / BLOCK_W)[c]
+                    }))
+                });
+                let mut hit = Hit8::new(f32x8::splat(-1.0).simd_lt(f32x8::ZERO));
+                let mut carried = f32x8::splat(f32::NAN);
+                let won = |v: f32, take: f32x8| carried = take.select(f32x8::splat(v), carried);
+                tiles.trace_packet_x8_with(&packed, &lists, k, &d, &mut hit, won);
+                for (l, (&id, &c)) in hit
+                    .id
+                    .to_array()
+                    .iter()
+                    .zip(&carried.to_array())
+                    .enumerate()
+                {
+                    if id < 0.0 {
+                        assert!(c.is_nan(), "lane {l} without a hit carries {c}");
+                        continue;
+                    }
+                    let (kind, i) = (0..3)
+                        .find_map(|kind| {
+                            let i = ids[kind].iter().position(|&v| v == id)?;
+                            Some((kind, i))
+                        })
+                        .expect("the winner is in a store");
+                    let want = value(kind, i);
+                    assert!(c == want || (c <= want && c >= want * (1.0 - 2f32.powi(-15))));
+                    checked += 1;
+                }
+            }
+        }
+    }
+    assert!(checked > 1000, "{checked} lanes");
 }

@@ -1,17 +1,18 @@
 //! The checks of `--precision auto` (the parent module): which f32 hits lie outside their
-//! primitive's trusted distances, measured ([`Redecide::recheck_group`]) and, where the
-//! measurement fails, decided again in f64, a group of four pixels of a row at a time.
+//! primitive's trusted distances, measured four at a time ([`Redecide::verified_lanes`]) and,
+//! where the measurement fails, decided again in f64, a group of four pixels of a row at a time.
 //!
 //! - Through the tiles: each packet's lanes carry the trusted distance of their winner, so a
 //!   packet's check is one compare ([`Redecide::suspects_carried`]); the few packets with
-//!   lanes to check are checked at the end of the strip ([`Redecide::fix_pending`]).
+//!   lanes to check are checked at the end of the strip, their suspects measured together
+//!   whatever their packets ([`Redecide::fix_pending`]).
 //! - Through the BVH, or without acceleration: the finished strip is scanned, eight pixels per
 //!   compare, against the least trusted distance in the scene ([`Redecide::fix_strip`]), and
 //!   the packet loop is the f32 one, unchanged.
 
+use super::verify::Suspect;
 use super::{ROW_MIN, Redecide, Walk};
 use crate::kernel::packet::BLOCK_W;
-use crate::kernel::{Hit8, LANES};
 use wide::f32x8;
 
 impl Redecide<'_> {
@@ -254,9 +255,9 @@ impl Redecide<'_> {
     /// finite `hi`, untrusted as they stand, and those on a primitive with a `lo`, whose limits
     /// must be looked up. `(0, 0)` for most packets: one compare.
     #[inline(always)]
-    pub(crate) fn suspects_carried(&self, hit: &Hit8, carried: f32x8) -> (u32, u32) {
-        let hits = hit.id.simd_ge(f32x8::ZERO);
-        let suspect = (hits & hit.t.simd_gt(carried)).to_bitmask();
+    pub(crate) fn suspects_carried(&self, t: f32x8, carried: f32x8) -> (u32, u32) {
+        // a lane without a hit carries +inf at +inf: never beyond
+        let suspect = t.simd_gt(carried).to_bitmask();
         if suspect == 0 {
             return (0, 0);
         }
@@ -270,9 +271,12 @@ impl Redecide<'_> {
     /// Checks the suspect lanes of a finished strip's packets (`pending`, from
     /// [`Redecide::suspects_carried`]; `ids`, `depth`: whole rows of `width` pixels from row
     /// `y_start`) and decides again in f64 each that cannot be trusted, noting its index in the
-    /// image in `mine`. Each suspect's shape is read first, all of them before any is used: the
-    /// reads are independent, so their cache misses overlap (checked as they came, packet by
-    /// packet, each paid a whole miss: most of a suspect's cost on 65,536 random primitives).
+    /// image in `mine`. The strip's suspects are measured four at a time, whatever their
+    /// packets and primitives ([`Redecide::verified_lanes`]): most packets have one, and
+    /// measured packet by packet three of the four f64 lanes went unused. Each suspect's shape
+    /// is read as it is listed, before any is measured: the reads are independent, so their
+    /// cache misses overlap (on 65,536 random primitives, most of a suspect's cost when each
+    /// was read as it was measured).
     pub(crate) fn fix_pending(
         &self,
         walk: &Walk,
@@ -281,26 +285,58 @@ impl Redecide<'_> {
         pending: &[Pending],
         mine: &mut Vec<usize>,
     ) {
-        let lane_at = |p: &Pending, l: usize| (p.by + l / BLOCK_W) * width + p.bx + l % BLOCK_W;
-        for p in pending {
+        // (packet, lane, hit) of every lane to measure, in packet order
+        let mut suspects = Vec::with_capacity(2 * pending.len());
+        for (k, p) in pending.iter().enumerate() {
             let mut m = p.untrusted | p.lookup;
             while m != 0 {
-                let id = ids[lane_at(p, m.trailing_zeros() as usize)];
-                std::hint::black_box(self.scene.shapes.get(id as usize));
+                let lane = m.trailing_zeros();
                 m &= m - 1;
+                let (x, y) = (
+                    p.bx + lane as usize % BLOCK_W,
+                    p.by + lane as usize / BLOCK_W,
+                );
+                let (id, t) = (ids[y * width + x] as f32, depth[y * width + x]);
+                if p.lookup >> lane & 1 == 1 {
+                    let [lo, hi] = self.limit(id);
+                    if (lo..=hi).contains(&t) {
+                        continue;
+                    }
+                }
+                std::hint::black_box(self.scene.shapes.get(id as usize));
+                let y = y_start + y;
+                suspects.push((k, lane, Suspect { x, y, id, t }));
             }
         }
-        for p in pending {
-            for row in 0..LANES / BLOCK_W {
-                let g = BLOCK_W * row;
-                let lanes = ((p.untrusted >> g) & 0xF, (p.lookup >> g) & 0xF);
-                let y = p.by + row;
-                let rows = (
-                    &mut ids[y * width..(y + 1) * width],
-                    &mut depth[y * width..(y + 1) * width],
-                );
-                self.check_group(walk, (p.bx, y_start + y, width), rows, lanes, mine);
-            }
+        // the lanes that stay untrusted once measured, still in packet order
+        let mut left = Vec::new();
+        for four in suspects.chunks(4) {
+            let s = std::array::from_fn(|i| four.get(i).map_or(Suspect::default(), |h| h.2));
+            let ok = self.verified_lanes(walk, &s, (1 << four.len()) - 1);
+            let failed = four.iter().enumerate().filter(|(i, _)| ok >> i & 1 == 0);
+            left.extend(failed.map(|(_, &(k, lane, _))| (k, lane)));
+        }
+        // decided again a packet row (four pixels) at a time
+        const W: u32 = BLOCK_W as u32;
+        for row in left.chunk_by(|a, b| (a.0, a.1 / W) == (b.0, b.1 / W)) {
+            let (p, r) = (&pending[row[0].0], row[0].1 as usize / BLOCK_W);
+            let lanes = row.iter().fold(0, |m, &(_, lane)| m | 1 << (lane % W));
+            let y = p.by + r;
+            let (ids, depth) = (
+                &mut ids[y * width..(y + 1) * width],
+                &mut depth[y * width..(y + 1) * width],
+            );
+            let n = (width - p.bx).min(4);
+            let mut t = std::array::from_fn(|i| if i < n { depth[p.bx + i] } else { 0.0 });
+            let mut id = std::array::from_fn(|i| if i < n { ids[p.bx + i] as f32 } else { -1.0 });
+            self.redo_group(walk, (p.bx, y_start + y), &mut t, &mut id, lanes);
+            self.write_back(
+                (p.bx, y_start + y, width),
+                (&t, &id),
+                lanes,
+                (ids, depth),
+                mine,
+            );
         }
     }
 }

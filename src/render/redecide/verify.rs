@@ -4,7 +4,7 @@
 //! [`BUDGET`] of its distance.
 
 use super::{BUDGET, ORACLE_SLOTS, Redecide, Walk};
-use crate::kernel::methods::wide64::{dir_x4d, sphere_x4d};
+use crate::kernel::methods::wide64::dir_x4d;
 use crate::kernel::polygon::{QuadK, TriangleK};
 use crate::kernel::sphere::SphereK;
 use crate::scene::Shape;
@@ -39,12 +39,92 @@ impl Oracle {
     }
 }
 
+/// A hit to measure: its pixel `(x, y)` in the image, its primitive `id` and f32 distance `t`.
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct Suspect {
+    pub(super) x: usize,
+    pub(super) y: usize,
+    pub(super) id: f32,
+    pub(super) t: f32,
+}
+
+/// Four spheres' oracle constants ([`SphereK<f64>`]), one per lane.
+#[derive(Debug, Clone, Copy, Default)]
+struct SphereLanes {
+    oc: [[f64; 4]; 3],
+    r2: [f64; 4],
+    c: [f64; 4],
+    /// 1.0 where the eye is inside the sphere.
+    inside: [f64; 4],
+}
+
+impl SphereLanes {
+    fn set(&mut self, i: usize, k: &SphereK<f64>) {
+        for (a, v) in self.oc.iter_mut().zip(k.oc) {
+            a[i] = v;
+        }
+        (self.r2[i], self.c[i]) = (k.r2, k.c);
+        self.inside[i] = f64::from(u8::from(k.inside));
+    }
+}
+
+/// Four polygons' measurement constants ([`Oracle::Plane`]), one per lane.
+#[derive(Debug, Clone, Copy, Default)]
+struct PlaneLanes {
+    n: [[f64; 4]; 3],
+    lo2: [f64; 4],
+    hi2: [f64; 4],
+}
+
+impl PlaneLanes {
+    fn set(&mut self, i: usize, n: [f64; 3], lo2: f64, hi2: f64) {
+        for (a, v) in self.n.iter_mut().zip(n) {
+            a[i] = v;
+        }
+        (self.lo2[i], self.hi2[i]) = (lo2, hi2);
+    }
+}
+
+/// The lanes whose f32 distance `t32` on a polygon is within [`BUDGET`] of the oracle's, for
+/// rays at screen coordinates `(sx, sy)` ([`Redecide::verified_row`] derives the test):
+/// `v = f + sx r + sy u` with `f, r, u` orthonormal (to f64 rounding), so `v . N` and `v . v`
+/// take two multiply-adds each; `(1 - B) p |v| <= t (v . N) <= (1 + B) p |v|`, every side
+/// positive, is compared squared.
+#[inline(always)]
+fn plane_within(k: &PlaneLanes, (sx, sy): (f64x4, f64x4), t32: f64x4) -> f64x4 {
+    let n = k.n.map(f64x4::new);
+    let dn = n[0] + sx * n[1] + sy * n[2];
+    let len2 = f64x4::ONE + sx * sx + sy * sy;
+    let td = t32 * dn;
+    let td2 = td * td;
+    dn.simd_gt(f64x4::ZERO)
+        & td2.simd_ge(f64x4::new(k.lo2) * len2)
+        & td2.simd_le(f64x4::new(k.hi2) * len2)
+}
+
+/// The lanes whose f32 distance `t32` on a sphere is within [`BUDGET`] of the oracle's along
+/// the unit f64 rays `d`: `kernel::sphere::sphere_x1`'s operations in the same order, each
+/// lane with its own sphere, so each lane's distance is the oracle's bit for bit; a ray the
+/// oracle does not see meeting the sphere ahead of the eye (its silhouette) is not verified.
+#[inline(always)]
+fn sphere_within(k: &SphereLanes, d: &[f64x4; 3], t32: f64x4) -> f64x4 {
+    let oc = k.oc.map(f64x4::new);
+    let b = oc[0] * d[0] + oc[1] * d[1] + oc[2] * d[2];
+    let l = [oc[0] - b * d[0], oc[1] - b * d[1], oc[2] - b * d[2]];
+    let disc = f64x4::new(k.r2) - (l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
+    let q = b + disc.sqrt();
+    let inside = f64x4::new(k.inside).simd_gt(f64x4::ZERO);
+    let t64 = inside.select(q, f64x4::new(k.c) / q);
+    disc.simd_ge(f64x4::ZERO)
+        & t64.simd_gt(f64x4::ZERO)
+        & t64.simd_lt(f64x4::splat(f64::INFINITY))
+        & (t32 - t64).abs().simd_le(f64x4::splat(BUDGET) * t64)
+}
+
 impl Redecide<'_> {
     /// The lanes of `untrusted` (bits) of the four pixels `x0..x0 + 4` of row `y` (hits `t`
     /// on primitives `id`) whose hits stay untrusted once measured against the oracle's kernel
-    /// for their own primitive. Lanes on one primitive (the common case) are measured together
-    /// in f64x4 lanes, each lane the scalar kernel's answer bit for bit
-    /// (`kernel::methods::wide64`); others one primitive at a time.
+    /// for their own primitive ([`Redecide::verified_lanes`]).
     #[inline]
     pub(super) fn recheck_group(
         &self,
@@ -54,20 +134,49 @@ impl Redecide<'_> {
         id: &[f32; 4],
         untrusted: u32,
     ) -> u32 {
-        let mut left = untrusted;
-        let mut out = 0;
-        while left != 0 {
-            // the lanes on the first remaining lane's primitive, measured together
-            let first = id[left.trailing_zeros() as usize];
-            let same = (0..4)
-                .filter(|&i| id[i] == first)
-                .fold(0, |m, i| m | 1 << i)
-                & left;
-            let k = self.oracle(walk, first as usize);
-            out |= same & !self.verified_row(&k, (x0, y), *t);
-            left &= !same;
+        let s = std::array::from_fn(|i| match untrusted >> i & 1 {
+            1 => Suspect {
+                x: x0 + i,
+                y,
+                id: id[i],
+                t: t[i],
+            },
+            _ => Suspect::default(),
+        });
+        untrusted & !self.verified_lanes(walk, &s, untrusted)
+    }
+
+    /// Which of the hits `s` in the lanes `lanes` (bits) are within [`BUDGET`] of the oracle's
+    /// distance for their own primitive along their own pixel's f64 ray, measured together in
+    /// f64x4 lanes whatever their pixels and primitives: a strip's few suspects, one or two to
+    /// a packet, fill the lanes ([`plane_within`], [`sphere_within`]). A polygon the oracle
+    /// sees edge-on is not verified.
+    pub(super) fn verified_lanes(&self, walk: &Walk, s: &[Suspect; 4], lanes: u32) -> u32 {
+        let (mut spheres, mut planes) = (SphereLanes::default(), PlaneLanes::default());
+        let (mut is_sphere, mut is_plane) = (0, 0);
+        for (i, h) in s.iter().enumerate().filter(|(i, _)| lanes >> i & 1 == 1) {
+            let id = h.id as usize;
+            if let Shape::Sphere { center, radius } = self.scene.shapes.get(id) {
+                // a sphere's constants cost less to compute than to look up
+                spheres.set(i, &SphereK::new(center, radius, self.camera_eye));
+                is_sphere |= 1 << i;
+            } else if let Some(Oracle::Plane { n, lo2, hi2 }) = *self.oracle(walk, id) {
+                planes.set(i, n, lo2, hi2);
+                is_plane |= 1 << i;
+            }
         }
-        out
+        let tb = &self.tables;
+        let sx = f64x4::new(s.map(|h| tb.sx[h.x]));
+        let sy = f64x4::new(s.map(|h| tb.sy[h.y]));
+        let t32 = f64x4::new(s.map(|h| f64::from(h.t)));
+        let mut ok = 0;
+        if is_plane != 0 {
+            ok |= plane_within(&planes, (sx, sy), t32).to_bitmask() & is_plane;
+        }
+        if is_sphere != 0 {
+            ok |= sphere_within(&spheres, &dir_x4d(tb, sx, sy), t32).to_bitmask() & is_sphere;
+        }
+        ok & lanes
     }
 
     /// The oracle's constants of primitive `id` (`None`: a polygon seen edge-on, never hit),
@@ -142,29 +251,15 @@ impl Redecide<'_> {
         let sy = f64x4::splat(tb.sy[y]);
         let t32 = f64x4::new(t.map(f64::from));
         match *k {
-            // v = f + sx r + sy u with f, r, u orthonormal (to f64 rounding): v . N and v . v
-            // in two multiply-adds each; (1 - B) p |v| <= t (v . N) <= (1 + B) p |v|, every
-            // side positive, compared squared
             Some(Oracle::Plane { n, lo2, hi2 }) => {
-                let dn = f64x4::splat(n[0]) + sx * f64x4::splat(n[1]) + sy * f64x4::splat(n[2]);
-                let len2 = f64x4::ONE + sx * sx + sy * sy;
-                let td = t32 * dn;
-                let td2 = td * td;
-                let ok = dn.simd_gt(f64x4::ZERO)
-                    & td2.simd_ge(f64x4::splat(lo2) * len2)
-                    & td2.simd_le(f64x4::splat(hi2) * len2);
-                ok.to_bitmask()
+                let mut planes = PlaneLanes::default();
+                (0..4).for_each(|i| planes.set(i, n, lo2, hi2));
+                plane_within(&planes, (sx, sy), t32).to_bitmask()
             }
             Some(Oracle::Sphere(k)) => {
-                let Some((mask, t64)) = sphere_x4d(&k, &dir_x4d(tb, sx, sy)) else {
-                    return 0;
-                };
-                // the scalar kernel's conditions: a hit ahead of the eye, finite
-                let ok = mask
-                    & t64.simd_gt(f64x4::ZERO)
-                    & t64.simd_lt(f64x4::splat(f64::INFINITY))
-                    & (t32 - t64).abs().simd_le(f64x4::splat(BUDGET) * t64);
-                ok.to_bitmask()
+                let mut spheres = SphereLanes::default();
+                (0..4).for_each(|i| spheres.set(i, &k));
+                sphere_within(&spheres, &dir_x4d(tb, sx, sy), t32).to_bitmask()
             }
             None => 0,
         }
@@ -182,12 +277,9 @@ mod tests {
     use crate::soa::Packed;
     use glam::DVec3;
 
-    /// A hit beyond its primitive's limits is kept exactly when its distance is within
-    /// `BUDGET` of the oracle's for that primitive, measured one lane alone and by groups of four, on one primitive or two.
-    #[test]
-    fn measured_hits_are_kept_only_within_the_budget() {
-        // scene 7's far-reaching triangle (grazing far away) and a sphere far larger than its
-        // distance to the eye, seen near its horizon
+    /// Scene 7's far-reaching triangle (grazing far away) and a sphere far larger than its
+    /// distance to the eye, seen near its horizon, through a 64x48 camera.
+    fn grazing_scene() -> (Scene, Camera) {
         let mut shapes = Shapes::new();
         let v = |x, y, z| DVec3::new(x, y, z);
         shapes.push(
@@ -217,6 +309,14 @@ mod tests {
             warnings: Vec::new(),
         };
         let camera = Camera::new(&scene.camera, 60.0, 64, 48);
+        (scene, camera)
+    }
+
+    /// A hit beyond its primitive's limits is kept exactly when its distance is within
+    /// `BUDGET` of the oracle's for that primitive, measured one lane alone and by groups of four, on one primitive or two.
+    #[test]
+    fn measured_hits_are_kept_only_within_the_budget() {
+        let (scene, camera) = grazing_scene();
         let packed = Packed::from_scene(&scene, camera.eye);
         let r = Redecide::new(&scene, &camera, &packed);
         let walk = r.walk(&packed, None, None);
@@ -277,5 +377,73 @@ mod tests {
         }
         assert!(mixed > 5, "{mixed} mixed groups");
         assert!(kept > 500 && refused > 500, "{kept} {refused}");
+    }
+
+    /// Suspects measured four at a time whatever their pixels, rows and primitives (as a strip's
+    /// pending packets fill the lanes) get each the answer their own oracle distance gives: kept
+    /// at it, refused at 2 `BUDGET` beyond it, wherever the batch puts them.
+    #[test]
+    fn suspects_batched_across_pixels_and_primitives_are_measured_each_alone() {
+        let (scene, camera) = grazing_scene();
+        let packed = Packed::from_scene(&scene, camera.eye);
+        let r = Redecide::new(&scene, &camera, &packed);
+        let walk = r.walk(&packed, None, None);
+        let mut cases = Vec::new();
+        for y in 0..48 {
+            for x in 0..64 {
+                let d = r.tables.dir_x1(x, y);
+                for id in 0..2 {
+                    let t64 = match scene.shapes.get(id) {
+                        Shape::Sphere { center, radius } => {
+                            sphere_x1(&SphereK::new(center, radius, camera.eye), d)
+                        }
+                        Shape::Triangle(v) => {
+                            TriangleK::triangle(&v, camera.eye).and_then(|k| polygon_x1(&k, d))
+                        }
+                        Shape::Quad(_) => None,
+                    };
+                    if let Some(t64) = t64 {
+                        let at = |scale: f64| Suspect {
+                            x,
+                            y,
+                            id: id as f32,
+                            t: (t64 * scale) as f32,
+                        };
+                        cases.push((at(1.0), true));
+                        cases.push((at(1.0 + 2.0 * BUDGET), false));
+                    }
+                }
+            }
+        }
+        // a fixed shuffle: neighbours in a batch come from far apart in the image
+        let n = cases.len();
+        let order: Vec<usize> = (0..n).map(|i| i * 7919 % n).collect();
+        assert!(n % 7919 != 0 && n > 1000, "{n} cases");
+        let (mut mixed, mut kept) = (0, 0);
+        for four in order.chunks(4) {
+            let s =
+                std::array::from_fn(|i| four.get(i).map_or(Suspect::default(), |&c| cases[c].0));
+            let lanes = (1 << four.len()) - 1;
+            let ok = r.verified_lanes(&walk, &s, lanes);
+            for (i, &c) in four.iter().enumerate() {
+                assert_eq!(
+                    ok >> i & 1 == 1,
+                    cases[c].1,
+                    "{:?} in a batch of {}",
+                    cases[c].0,
+                    four.len()
+                );
+                kept += u32::from(cases[c].1);
+            }
+            if four.iter().any(|&c| cases[c].0.id == 0.0)
+                && four.iter().any(|&c| cases[c].0.id == 1.0)
+            {
+                mixed += 1;
+            }
+        }
+        assert!(
+            mixed > 50 && kept > 500,
+            "{mixed} mixed batches, {kept} kept"
+        );
     }
 }
