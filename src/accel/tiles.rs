@@ -221,37 +221,55 @@ impl Tiles {
         d: &[f32x8; 3],
         hit: &mut Hit8,
     ) {
-        self.trace_packet_x8_with(p, lists, k, d, hit, |_, _| {})
+        self.walk_packet::<false>(p, lists, k, d, hit);
     }
 
-    /// [`Tiles::trace_packet_x8`], calling `won(attached, lanes)` after each entry tested with
-    /// the value attached to its primitive ([`Tiles::attach`]) and the lanes it took
-    /// (`--precision auto` carries each lane's trusted distance that way; a no-op compiles
-    /// away).
+    /// [`Tiles::trace_packet_x8`], also returning for each lane the value attached to the
+    /// primitive that won it ([`Tiles::attach`]; +inf where none did): one blend per entry
+    /// tested (`--precision auto` carries each lane's trusted distance that way).
     #[inline(always)]
-    pub fn trace_packet_x8_with(
+    pub fn trace_packet_x8_carrying(
         &self,
         p: &Packed,
         lists: &PacketLists,
         k: usize,
         d: &[f32x8; 3],
         hit: &mut Hit8,
-        mut won: impl FnMut(f32, f32x8),
-    ) {
+    ) -> f32x8 {
+        self.walk_packet::<true>(p, lists, k, d, hit)
+    }
+
+    /// The walk of [`Tiles::trace_packet_x8`], carrying the winners' attached values when
+    /// `CARRY`. The hits and carried values are locals for the walk, stored back once: kept
+    /// behind `hit` (and a closure's capture), they were stored to memory at every entry.
+    #[inline(always)]
+    fn walk_packet<const CARRY: bool>(
+        &self,
+        p: &Packed,
+        lists: &PacketLists,
+        k: usize,
+        d: &[f32x8; 3],
+        hit: &mut Hit8,
+    ) -> f32x8 {
+        let (mut h, mut carried) = (*hit, f32x8::splat(f32::INFINITY));
         let list = self.list(lists.tile.0, lists.tile.1);
         for &i in &lists.index[k * lists.stride..][..lists.len[k]] {
             let e = &list[i as usize];
-            if !hit.t.simd_ge(f32x8::splat(e.near)).any() {
-                return;
+            if !h.t.simd_ge(f32x8::splat(e.near)).any() {
+                break;
             }
-            let take = test_entry(p, e, d, hit);
-            won(e.attached(), take);
+            let take = test_entry(p, e, d, &mut h);
+            if CARRY {
+                carried = take.select(f32x8::splat(e.attached()), carried);
+            }
         }
+        *hit = h;
+        carried
     }
 
     /// Attaches `value(kind, index)` to every primitive (kind 0 sphere, 1 triangle, 2 quad;
     /// index into that kind's packed store), to be handed back by
-    /// [`Tiles::trace_packet_x8_with`] with the lanes the primitive wins. Stored in 24 bits:
+    /// [`Tiles::trace_packet_x8_carrying`] with the lanes the primitive wins. Stored in 24 bits:
     /// the f32 with its low 8 bits cleared, rounded toward zero by at most 2^-15 relative
     /// (±inf, ±0 exactly). `--precision auto` attaches each primitive's trusted distance,
     /// which rounding down only makes safer.

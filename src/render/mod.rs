@@ -28,7 +28,7 @@ use crate::kernel::{Hit8, LANES};
 use crate::real::Real;
 use crate::soa::{Packed, Prepared};
 use rayon::prelude::*;
-use redecide::{Pending, Redecide};
+use redecide::Redecide;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use wide::f32x8;
@@ -261,21 +261,13 @@ pub(crate) fn packet_blocks<const BW: usize>(
                             match &walk {
                                 // auto: each lane carries its winner's trusted distance
                                 Some((r, _)) => {
-                                    let mut carried = f32x8::splat(f32::INFINITY);
-                                    let won = |hi: f32, take: f32x8| {
-                                        carried = take.select(f32x8::splat(hi), carried)
-                                    };
-                                    tiles.trace_packet_x8_with(
-                                        &p.packed, &lists, k, &d, &mut hit, won,
+                                    let carried = tiles.trace_packet_x8_carrying(
+                                        &p.packed, &lists, k, &d, &mut hit,
                                     );
-                                    let (untrusted, lookup) = r.suspects_carried(hit.t, carried);
-                                    if untrusted | lookup != 0 {
-                                        pending.push(Pending {
-                                            bx,
-                                            by,
-                                            untrusted,
-                                            lookup,
-                                        });
+                                    // a lane without a hit carries +inf at +inf: never beyond
+                                    let suspect = hit.t.simd_gt(carried).to_bitmask();
+                                    if suspect != 0 {
+                                        pending.push(r.pending((bx, by), suspect, carried));
                                     }
                                 }
                                 None => tiles.trace_packet_x8(&p.packed, &lists, k, &d, &mut hit),

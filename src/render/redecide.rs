@@ -66,7 +66,6 @@ use wide::f64x4;
 
 mod bounds;
 mod check;
-pub(crate) use check::Pending;
 mod verify;
 pub use bounds::TOLERANCE;
 use bounds::{BUDGET, Bounds};

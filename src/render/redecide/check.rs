@@ -3,7 +3,7 @@
 //! where the measurement fails, decided again in f64, a group of four pixels of a row at a time.
 //!
 //! - Through the tiles: each packet's lanes carry the trusted distance of their winner, so a
-//!   packet's check is one compare ([`Redecide::suspects_carried`]); the few packets with
+//!   packet's check is one compare ([`Redecide::pending`]); the few packets with
 //!   lanes to check are checked at the end of the strip, their suspects measured together
 //!   whatever their packets ([`Redecide::fix_pending`]).
 //! - Through the BVH, or without acceleration: the finished strip is scanned, eight pixels per
@@ -249,27 +249,34 @@ impl Redecide<'_> {
         }
     }
 
-    /// The lanes of a packet traced with each lane's trusted distance carried along
-    /// (`carried`: the `hi` of the primitive that won the lane, -inf where the primitive has a
-    /// lower limit too; [`Redecide::carried`]) that need a check, as bits: those beyond a
-    /// finite `hi`, untrusted as they stand, and those on a primitive with a `lo`, whose limits
-    /// must be looked up. `(0, 0)` for most packets: one compare.
-    #[inline(always)]
-    pub(crate) fn suspects_carried(&self, t: f32x8, carried: f32x8) -> (u32, u32) {
-        // a lane without a hit carries +inf at +inf: never beyond
-        let suspect = t.simd_gt(carried).to_bitmask();
-        if suspect == 0 {
-            return (0, 0);
-        }
+    /// The packet at `(bx, by)` of a strip (`by`: its first row there) traced with each
+    /// lane's trusted distance carried along (`carried`: the `hi` of the primitive that won
+    /// the lane, -inf where the primitive has a lower limit too; [`super::carry`]), whose lanes
+    /// `suspect` (bits) lie beyond their carried distance: those beyond a finite `hi` are
+    /// untrusted as they stand, those on a primitive with a `lo` must look their limits up.
+    /// The packet loop finds `suspect` with one compare, and comes here for the few packets
+    /// where it is not empty.
+    #[inline]
+    pub(crate) fn pending(
+        &self,
+        (bx, by): (usize, usize),
+        suspect: u32,
+        carried: f32x8,
+    ) -> Pending {
         let lookup = carried
             .simd_eq(f32x8::splat(f32::NEG_INFINITY))
             .to_bitmask()
             & suspect;
-        (suspect & !lookup, lookup)
+        Pending {
+            bx,
+            by,
+            untrusted: suspect & !lookup,
+            lookup,
+        }
     }
 
     /// Checks the suspect lanes of a finished strip's packets (`pending`, from
-    /// [`Redecide::suspects_carried`]; `ids`, `depth`: whole rows of `width` pixels from row
+    /// [`Redecide::pending`]; `ids`, `depth`: whole rows of `width` pixels from row
     /// `y_start`) and decides again in f64 each that cannot be trusted, noting its index in the
     /// image in `mine`. The strip's suspects are measured four at a time, whatever their
     /// packets and primitives ([`Redecide::verified_lanes`]): most packets have one, and
