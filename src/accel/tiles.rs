@@ -112,10 +112,10 @@ struct Entry {
     prim: u32,
     /// Low 8 bits: the tile's packets (bits, packet `k` at column `k % 2`, row `k / 2`) whose
     /// rays the kernel may accept: those the primitive's rectangle overlaps, less those
-    /// `PacketCones` finds out of reach. High 24 bits: the top 24 bits of the f32 value the
-    /// caller attached to the primitive ([`Tiles::attach`]; +inf until then), handed back with
-    /// the lanes the primitive wins. Kept in the entry the walk already reads, it costs no
-    /// memory access of its own.
+    /// `PacketCones` finds out of reach. The whole word read as an f32: the value the caller
+    /// attached to the primitive ([`Tiles::attach`]; +inf until then) rounded down
+    /// ([`lower_bits`]), handed back with the lanes the primitive wins. Kept in the entry the
+    /// walk already reads, it costs no memory access of its own, and is read with no masking.
     word: u32,
 }
 
@@ -129,7 +129,7 @@ impl Entry {
         Entry {
             near,
             prim,
-            word: (f32::INFINITY.to_bits() & !PACKETS_MASK) | u32::from(packets),
+            word: lower_bits(f32::INFINITY) | u32::from(packets),
         }
     }
 
@@ -139,11 +139,25 @@ impl Entry {
         self.word & PACKETS_MASK
     }
 
-    /// The value attached to the primitive ([`Tiles::attach`]), its f32 bits below the top 24
-    /// cleared: rounded toward zero.
+    /// The value attached to the primitive ([`Tiles::attach`]), rounded down: the word as it
+    /// stands, read as an f32 ([`lower_bits`]).
     #[inline(always)]
     fn attached(&self) -> f32 {
-        f32::from_bits(self.word & !PACKETS_MASK)
+        f32::from_bits(self.word)
+    }
+}
+
+/// The top 24 bits of an f32 at most `v`, whatever the low 8 bits (the entry's packets) are:
+/// `v` rounded toward zero to 24 bits, less one unit of the 24th bit, so below `v` by less
+/// than 2^-14 relative. +inf becomes a finite value above 3.4e38 (no f32 hit distance in a
+/// scene `scene::validate` accepts comes near it), and every `v <= 0` (and NaN) a value below
+/// -3.4e38, whose sign alone then tells it apart.
+fn lower_bits(v: f32) -> u32 {
+    let top = v.to_bits() & !PACKETS_MASK;
+    if v > 0.0 && top > PACKETS_MASK {
+        top - (PACKETS_MASK + 1)
+    } else {
+        (-f32::MAX).to_bits() & !PACKETS_MASK
     }
 }
 
@@ -269,17 +283,17 @@ impl Tiles {
 
     /// Attaches `value(kind, index)` to every primitive (kind 0 sphere, 1 triangle, 2 quad;
     /// index into that kind's packed store), to be handed back by
-    /// [`Tiles::trace_packet_x8_carrying`] with the lanes the primitive wins. Stored in 24 bits:
-    /// the f32 with its low 8 bits cleared, rounded toward zero by at most 2^-15 relative
-    /// (±inf, ±0 exactly). `--precision auto` attaches each primitive's trusted distance,
-    /// which rounding down only makes safer.
+    /// [`Tiles::trace_packet_x8_carrying`] with the lanes the primitive wins. Stored in the
+    /// top 24 bits of the entry, rounded down ([`lower_bits`]): by less than 2^-14 relative,
+    /// +inf to above 3.4e38, any `v <= 0` to below -3.4e38. `--precision auto` attaches each
+    /// primitive's trusted distance, which rounding down only makes safer.
     pub fn attach(&mut self, value: impl Fn(usize, usize) -> f32 + Sync) {
         self.entries.par_iter_mut().for_each(|e| {
             let v = value(
                 (e.prim >> KIND_SHIFT) as usize,
                 (e.prim & INDEX_MASK) as usize,
             );
-            e.word = (v.to_bits() & !PACKETS_MASK) | e.packets();
+            e.word = lower_bits(v) | e.packets();
         });
     }
 }

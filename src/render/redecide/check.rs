@@ -251,7 +251,7 @@ impl Redecide<'_> {
 
     /// The packet at `(bx, by)` of a strip (`by`: its first row there) traced with each
     /// lane's trusted distance carried along (`carried`: the `hi` of the primitive that won
-    /// the lane, -inf where the primitive has a lower limit too; [`super::carry`]), whose lanes
+    /// the lane, negative where the primitive has a lower limit too; [`super::carry`]), whose lanes
     /// `suspect` (bits) lie beyond their carried distance: those beyond a finite `hi` are
     /// untrusted as they stand, those on a primitive with a `lo` must look their limits up.
     /// The packet loop finds `suspect` with one compare, and comes here for the few packets
@@ -263,10 +263,8 @@ impl Redecide<'_> {
         suspect: u32,
         carried: f32x8,
     ) -> Pending {
-        let lookup = carried
-            .simd_eq(f32x8::splat(f32::NEG_INFINITY))
-            .to_bitmask()
-            & suspect;
+        // -inf arrives below -3.4e38 (`Tiles::attach` rounds down): the sign tells it
+        let lookup = carried.simd_lt(f32x8::ZERO).to_bitmask() & suspect;
         Pending {
             bx,
             by,
