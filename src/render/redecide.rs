@@ -59,7 +59,8 @@ use crate::kernel::methods::wide64::{Hit4d, dir_x4d};
 use crate::kernel::polygon::{QuadK, TriangleK};
 use crate::kernel::scalar::trace_x1;
 use crate::kernel::sphere::SphereK;
-use crate::scene::Scene;
+use crate::scene::{Scene, Shape};
+use rayon::prelude::*;
 use crate::soa::{Packed, Records, SceneRecords};
 use std::cell::RefCell;
 use wide::f64x4;
@@ -81,6 +82,12 @@ pub struct Redecide<'s> {
     /// A distance up to which a hit on any primitive is trusted (the least `hi`; -inf where
     /// one needs `lo`): the strip scan looks up only the pixels beyond it.
     safe: f32,
+    /// Per scene id, the index of that sphere in the packed sphere store (`u32::MAX`: not a
+    /// sphere; empty when the scene has none), and per packed sphere, its centre and radius
+    /// as the scene holds them: a suspect's sphere is read from a store in screen order, not
+    /// from the scene's shapes in file order (a cache miss per suspect on 65,536 spheres).
+    sphere_at: Vec<u32>,
+    spheres: Vec<(glam::DVec3, f64)>,
     /// The oracle's f64 ray tables, padded to whole 4x2 blocks (`dir_x1` is the oracle's ray).
     tables: RayTables<f64>,
 }
@@ -186,7 +193,22 @@ impl<'s> Redecide<'s> {
             .flat_map(|v| v.iter())
             .map(|&id| carry(limits[id as usize]))
             .fold(f32::INFINITY, f32::min);
+        let mut sphere_at = vec![u32::MAX; if s.id.is_empty() { 0 } else { limits.len() }];
+        for (i, &id) in s.id.iter().enumerate() {
+            sphere_at[id as usize] = i as u32;
+        }
+        let spheres = s
+            .id
+            .par_iter()
+            .map(|&id| match scene.shapes.get(id as usize) {
+                Shape::Sphere { center, radius } => (center, radius),
+                // not reached (the packed spheres are the scene's); NaN never verifies
+                _ => (glam::DVec3::NAN, f64::NAN),
+            })
+            .collect();
         Redecide {
+            sphere_at,
+            spheres,
             scene,
             camera_eye: camera.eye,
             limits,
@@ -220,6 +242,15 @@ impl<'s> Redecide<'s> {
     pub(crate) fn attach_to(&self, tiles: &mut Tiles, packed: &Packed) {
         let ids = [&packed.spheres.id, &packed.triangles.id, &packed.quads.id];
         tiles.attach(|kind, i| carry(self.limits[ids[kind][i] as usize]));
+    }
+
+    /// The centre and radius of primitive `id` when it is a sphere.
+    #[inline(always)]
+    fn sphere(&self, id: usize) -> Option<(glam::DVec3, f64)> {
+        match self.sphere_at.get(id) {
+            Some(&at) if at != u32::MAX => Some(self.spheres[at as usize]),
+            _ => None,
+        }
     }
 
     /// The oracle's hits for the pixels `x0..x0 + 4` of row `y` in the lanes of `lanes` (bits),

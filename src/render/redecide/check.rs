@@ -308,7 +308,11 @@ impl Redecide<'_> {
                         continue;
                     }
                 }
-                std::hint::black_box(self.scene.shapes.get(id as usize));
+                // read now, so that the reads' cache misses overlap
+                match self.sphere(id as usize) {
+                    Some(sphere) => drop(std::hint::black_box(sphere)),
+                    None => drop(std::hint::black_box(self.scene.shapes.get(id as usize))),
+                }
                 let y = y_start + y;
                 suspects.push((k, lane, Suspect { x, y, id, t }));
             }

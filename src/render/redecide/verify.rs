@@ -156,7 +156,7 @@ impl Redecide<'_> {
         let (mut is_sphere, mut is_plane) = (0, 0);
         for (i, h) in s.iter().enumerate().filter(|(i, _)| lanes >> i & 1 == 1) {
             let id = h.id as usize;
-            if let Shape::Sphere { center, radius } = self.scene.shapes.get(id) {
+            if let Some((center, radius)) = self.sphere(id) {
                 // a sphere's constants cost less to compute than to look up
                 spheres.set(i, &SphereK::new(center, radius, self.camera_eye));
                 is_sphere |= 1 << i;
