@@ -10,10 +10,10 @@
 //!   compare, against the least trusted distance in the scene ([`Redecide::fix_strip`]), and
 //!   the packet loop is the f32 one, unchanged.
 
-use super::verify::Suspect;
+use super::verify::{Oracle, Suspect};
 use super::{ROW_MIN, Redecide, Walk};
 use crate::kernel::packet::BLOCK_W;
-use wide::f32x8;
+use wide::{f32x8, i32x8};
 
 impl Redecide<'_> {
     /// Checks the hits of a finished strip (`ids`, `depth`: whole rows of `width` pixels from
@@ -29,96 +29,105 @@ impl Redecide<'_> {
         depth: &mut [f32],
         mine: &mut Vec<usize>,
     ) {
-        let (safe, inf) = (f32x8::splat(self.safe), f32x8::splat(f32::INFINITY));
         for (r, (ids, depth)) in ids
             .chunks_exact_mut(width)
             .zip(depth.chunks_exact_mut(width))
             .enumerate()
         {
             let y = y_start + r;
-            // sixteen pixels per branch: the scan runs over every pixel of the image
             let suspects = |depth: &[f32], x0: usize| {
-                let d = f32x8::new(depth[x0..x0 + 8].try_into().expect("8 pixels"));
-                // background is +inf, and `safe` is below it
-                (d.simd_gt(safe) & d.simd_lt(inf)).to_bitmask()
+                self.beyond_safe(f32x8::new(depth[x0..x0 + 8].try_into().expect("8 pixels")))
             };
+            // sixteen pixels per branch: the scan runs over every pixel of the image; runs of
+            // blocks with suspects are checked together
             let (pairs, whole) = (width / 16 * 16, width / 8 * 8);
+            let mut start = None;
             for x0 in (0..pairs).step_by(16) {
-                let (a, b) = (suspects(depth, x0), suspects(depth, x0 + 8));
-                if a | b != 0 {
-                    for (x0, suspect) in [(x0, a), (x0 + 8, b)] {
-                        if suspect != 0 {
-                            let run = (x0, x0 + 8, y);
-                            self.fix_run(walk, run, ids, depth, suspect, width, mine);
-                        }
-                    }
+                if suspects(depth, x0) | suspects(depth, x0 + 8) != 0 {
+                    start.get_or_insert(x0);
+                } else if let Some(s) = start.take() {
+                    self.fix_span(walk, (s, x0, y), (ids, depth), width, mine);
                 }
             }
-            if pairs < whole {
-                let suspect = suspects(depth, pairs);
-                if suspect != 0 {
-                    let run = (pairs, whole, y);
-                    self.fix_run(walk, run, ids, depth, suspect, width, mine);
-                }
+            if let Some(s) = start {
+                self.fix_span(walk, (s, pairs, y), (ids, depth), width, mine);
             }
-            if whole < width {
-                let suspect = (whole..width)
-                    .filter(|&x| depth[x] > self.safe && depth[x] < f32::INFINITY)
-                    .fold(0, |m, x| m | 1 << (x - whole));
-                if suspect != 0 {
-                    let run = (whole, width, y);
-                    self.fix_run(walk, run, ids, depth, suspect, width, mine);
-                }
+            if pairs < whole && suspects(depth, pairs) != 0 {
+                self.fix_span(walk, (pairs, whole, y), (ids, depth), width, mine);
+            }
+            // the last few pixels of the row, one at a time
+            let suspect = (whole..width)
+                .filter(|&x| depth[x] > self.safe && depth[x] < f32::INFINITY)
+                .fold(0, |m, x| m | 1 << (x - whole));
+            for g in (whole..width).step_by(4) {
+                let lanes = (suspect >> (g - whole)) & 0xF;
+                self.check_group(walk, (g, y, width), (ids, depth), (0, lanes), mine);
             }
         }
     }
 
-    /// The rest of [`Redecide::fix_strip`] for the pixels `x0..x1` (at most eight) of row `y`
-    /// of which `suspect` (bits from `x0`) lie beyond `safe`, in groups of four: kept out of
-    /// the scan.
+    /// The pixels of `d` beyond `safe` (bits; background is +inf, and `safe` is below it).
+    #[inline(always)]
+    fn beyond_safe(&self, d: f32x8) -> u32 {
+        let (safe, inf) = (f32x8::splat(self.safe), f32x8::splat(f32::INFINITY));
+        (d.simd_gt(safe) & d.simd_lt(inf)).to_bitmask()
+    }
+
+    /// The rest of [`Redecide::fix_strip`] for the blocks of eight pixels `x0..x1` of row `y`
+    /// (`ids`, `depth`: that row, `width` wide), a run of blocks the scan found pixels beyond
+    /// `safe` in: kept out of the scan. A block whose suspects lie on one primitive (the
+    /// common case) takes one compare against that primitive's limits, and its two halves are
+    /// measured with the oracle's constants of that primitive; the limits and constants are
+    /// kept from block to block while the primitive stays the same.
     #[inline(never)]
-    #[allow(clippy::too_many_arguments)]
-    fn fix_run(
+    fn fix_span(
         &self,
         walk: &Walk,
         (x0, x1, y): (usize, usize, usize),
-        ids: &mut [i32],
-        depth: &mut [f32],
-        suspect: u32,
+        (ids, depth): (&mut [i32], &mut [f32]),
         width: usize,
         mine: &mut Vec<usize>,
     ) {
-        let first = ids[x0 + suspect.trailing_zeros() as usize];
-        if x1 - x0 == 8 && self.one_primitive(&ids[x0..x1], first, suspect) {
-            // one primitive under every suspect pixel (the common case): one lookup, one
-            // compare, and the oracle's constants fetched once for the eight
-            let [lo, hi] = self.limit(first as f32);
-            let d = f32x8::new(depth[x0..x0 + 8].try_into().expect("8 pixels"));
-            let out = d.simd_lt(f32x8::splat(lo)) | d.simd_gt(f32x8::splat(hi));
+        // (primitive, its limits, its oracle's constants once fetched)
+        let mut same: Option<(i32, [f32; 2], Option<Option<Oracle>>)> = None;
+        for b in (x0..x1).step_by(8) {
+            let t: [f32; 8] = depth[b..b + 8].try_into().expect("8 pixels");
+            let d = f32x8::new(t);
+            let suspect = self.beyond_safe(d);
+            if suspect == 0 {
+                continue;
+            }
+            let first = ids[b + suspect.trailing_zeros() as usize];
+            if !self.one_primitive(&ids[b..b + 8], first, suspect) {
+                for g in (b..b + 8).step_by(4) {
+                    let lanes = (suspect >> (g - b)) & 0xF;
+                    self.check_group(walk, (g, y, width), (ids, depth), (0, lanes), mine);
+                }
+                continue;
+            }
+            if same.as_ref().is_none_or(|s| s.0 != first) {
+                same = Some((first, self.limit(first as f32), None));
+            }
+            let (_, [lo, hi], k) = same.as_mut().expect("set above");
+            let out = d.simd_lt(f32x8::splat(*lo)) | d.simd_gt(f32x8::splat(*hi));
             let untrusted = suspect & out.to_bitmask();
             if untrusted == 0 {
-                return;
+                continue;
             }
             // both halves measured, whatever their lanes: two independent chains, no branch
-            let k = self.oracle(walk, first as usize);
-            let t: [f32; 8] = depth[x0..x0 + 8].try_into().expect("8 pixels");
+            let k = *k.get_or_insert_with(|| *self.oracle(walk, first as usize));
             let half = |h: usize| std::array::from_fn(|i| t[4 * h + i]);
-            let ok = self.verified_row(&k, (x0, y), half(0))
-                | self.verified_row(&k, (x0 + 4, y), half(1)) << 4;
+            let ok = self.verified_row(&k, (b, y), half(0))
+                | self.verified_row(&k, (b + 4, y), half(1)) << 4;
             let left = untrusted & !ok;
             for h in 0..2 {
                 let lanes = (left >> (4 * h)) & 0xF;
                 if lanes != 0 {
-                    let (g, mut t, mut id) = (x0 + 4 * h, half(h), [first as f32; 4]);
+                    let (g, mut t, mut id) = (b + 4 * h, half(h), [first as f32; 4]);
                     self.redo_group(walk, (g, y), &mut t, &mut id, lanes);
                     self.write_back((g, y, width), (&t, &id), lanes, (ids, depth), mine);
                 }
             }
-            return;
-        }
-        for g in (x0..x1).step_by(4) {
-            let lanes = (suspect >> (g - x0)) & 0xF;
-            self.check_group(walk, (g, y, width), (ids, depth), (0, lanes), mine);
         }
     }
 
@@ -149,8 +158,8 @@ impl Redecide<'_> {
     /// (compared all eight at once).
     #[inline(always)]
     fn one_primitive(&self, ids: &[i32], first: i32, suspect: u32) -> bool {
-        let ids: [i32; 8] = ids.try_into().expect("8 pixels");
-        let same = (0..8).fold(0, |m, i| m | u32::from(ids[i] == first) << i);
+        let ids = i32x8::new(ids.try_into().expect("8 pixels"));
+        let same = ids.simd_eq(i32x8::splat(first)).to_bitmask();
         suspect & !same == 0
     }
 
