@@ -122,6 +122,16 @@ fn auto_holds_on_the_seed_scenes() {
     }
 }
 
+/// Images whose sides are not whole tiles or packets: the last strip is three rows, the last
+/// tile column five pixels, and suspect packets there reach past the image (a packet's row
+/// beyond the last strip once made the strip check index past its rows).
+#[test]
+fn auto_holds_on_images_off_the_tile_grid() {
+    for (name, scene) in seed_scenes() {
+        holds(&name, &scene, 333, 211);
+    }
+}
+
 /// A rotation off every axis.
 fn tilt() -> DMat3 {
     DMat3::from_rotation_y(0.37) * DMat3::from_rotation_x(0.21) * DMat3::from_rotation_z(0.53)
