@@ -1,0 +1,71 @@
+#!/usr/bin/env python3
+"""Instructions per frame of `--precision f32` and `--precision auto`, counted by valgrind.
+
+On a shared machine, wall-clock ratios of two renderers move by several percent between runs;
+instruction counts do not. This script builds `examples/frames.rs` for AVX2
+(`-C target-cpu=x86-64-v3`, into target/icount: valgrind 3.19 decodes no AVX-512, and the
+lanes are f32x8 either way), runs it under `valgrind --tool=cachegrind` for 1 and for
+FRAMES + 1 frames of each scene and precision (packet kernel, automatic acceleration, one
+thread, 1280x720), and prints the difference per frame: the render alone, without setup.
+Instructions are not time: memory stalls and latency do not show. The speed target is taken
+from `cargo bench --bench precision`; this shows where auto's own work goes and how much of
+it a change removed.
+
+    python3 scripts/icount.py scenes/scene7.sc spheres_256 [--frames 3]
+
+Scenes named `K_N` are read from target/scale/ (written by `python3 scripts/vs_embree.py`).
+"""
+import argparse
+import os
+import subprocess
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+TARGET = os.path.join(ROOT, "target", "icount")
+
+
+def scene_path(name):
+    if os.path.exists(name):
+        return name
+    return os.path.join(ROOT, "target", "scale", name + ".sc")
+
+
+def instructions(scene, precision, frames, tmp):
+    out = os.path.join(tmp, "cg.out")
+    exe = os.path.join(TARGET, "release", "examples", "frames")
+    subprocess.run(
+        ["valgrind", "--tool=cachegrind", "--cache-sim=no", f"--cachegrind-out-file={out}",
+         exe, scene, precision, str(frames)],
+        check=True, capture_output=True)
+    with open(out) as f:
+        for line in f:
+            if line.startswith("summary:"):
+                return int(line.split()[1])
+    raise SystemExit(f"no summary in valgrind's output for {scene} {precision}")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("scenes", nargs="+")
+    ap.add_argument("--frames", type=int, default=3)
+    a = ap.parse_args()
+    env = dict(os.environ, CARGO_TARGET_DIR=TARGET, RUSTFLAGS="-C target-cpu=x86-64-v3")
+    subprocess.run(["cargo", "build", "--release", "--example", "frames"],
+                   cwd=ROOT, env=env, check=True)
+    print("| scene | f32 M instr / frame | auto M instr / frame | auto over f32 |")
+    print("|---|---:|---:|---:|")
+    with tempfile.TemporaryDirectory() as tmp:
+        for name in a.scenes:
+            path = scene_path(name)
+            per = {}
+            for p in ("f32", "auto"):
+                one = instructions(path, p, 1, tmp)
+                many = instructions(path, p, a.frames + 1, tmp)
+                per[p] = (many - one) / a.frames
+            label = os.path.splitext(os.path.basename(path))[0]
+            print(f"| {label} | {per['f32'] / 1e6:.2f} | {per['auto'] / 1e6:.2f} | "
+                  f"{100 * (per['auto'] / per['f32'] - 1):+.1f}% |")
+
+
+if __name__ == "__main__":
+    main()
