@@ -45,7 +45,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         for _ in 0..frames {
             redone = renderer.render_marking(None).1.len();
         }
-        (t.elapsed().as_secs_f64() * 1e3 / frames.max(1) as f64, redone)
+        (
+            t.elapsed().as_secs_f64() * 1e3 / frames.max(1) as f64,
+            redone,
+        )
     });
     println!("{precision}: {ms:.3} ms per frame, {redone} pixels re-decided");
     Ok(())

@@ -60,8 +60,8 @@ use crate::kernel::polygon::{QuadK, TriangleK};
 use crate::kernel::scalar::trace_x1;
 use crate::kernel::sphere::SphereK;
 use crate::scene::{Scene, Shape};
-use rayon::prelude::*;
 use crate::soa::{Packed, Records, SceneRecords};
+use rayon::prelude::*;
 use std::cell::RefCell;
 use wide::f64x4;
 
@@ -197,15 +197,14 @@ impl<'s> Redecide<'s> {
         for (i, &id) in s.id.iter().enumerate() {
             sphere_at[id as usize] = i as u32;
         }
-        let spheres = s
-            .id
-            .par_iter()
-            .map(|&id| match scene.shapes.get(id as usize) {
-                Shape::Sphere { center, radius } => (center, radius),
-                // not reached (the packed spheres are the scene's); NaN never verifies
-                _ => (glam::DVec3::NAN, f64::NAN),
-            })
-            .collect();
+        let spheres =
+            s.id.par_iter()
+                .map(|&id| match scene.shapes.get(id as usize) {
+                    Shape::Sphere { center, radius } => (center, radius),
+                    // not reached (the packed spheres are the scene's); NaN never verifies
+                    _ => (glam::DVec3::NAN, f64::NAN),
+                })
+                .collect();
         Redecide {
             sphere_at,
             spheres,
