@@ -146,9 +146,7 @@ impl Redecide<'_> {
         if known | look == 0 {
             return;
         }
-        let n = (width - x0).min(4);
-        let mut t = std::array::from_fn(|i| if i < n { depth[x0 + i] } else { 0.0 });
-        let mut id = std::array::from_fn(|i| if i < n { ids[x0 + i] as f32 } else { -1.0 });
+        let (mut t, mut id) = group((ids, depth), x0, width);
         let untrusted = known | self.outside(&t, &id, look);
         let redone = self.fix_group(walk, (x0, y), &mut t, &mut id, untrusted);
         self.write_back((x0, y, width), (&t, &id), redone, (ids, depth), mine);
@@ -344,9 +342,7 @@ impl Redecide<'_> {
                 &mut ids[y * width..(y + 1) * width],
                 &mut depth[y * width..(y + 1) * width],
             );
-            let n = (width - p.bx).min(4);
-            let mut t = std::array::from_fn(|i| if i < n { depth[p.bx + i] } else { 0.0 });
-            let mut id = std::array::from_fn(|i| if i < n { ids[p.bx + i] as f32 } else { -1.0 });
+            let (mut t, mut id) = group((ids, depth), p.bx, width);
             self.redo_group(walk, (p.bx, y_start + y), &mut t, &mut id, lanes);
             self.write_back(
                 (p.bx, y_start + y, width),
@@ -357,6 +353,16 @@ impl Redecide<'_> {
             );
         }
     }
+}
+
+/// The depths and ids of the four pixels `x0..x0 + 4` of a row (`ids`, `depth`, `width` wide),
+/// as the group checks take them: past the row's end, depth 0 and id -1 (no hit).
+fn group((ids, depth): (&[i32], &[f32]), x0: usize, width: usize) -> ([f32; 4], [f32; 4]) {
+    let n = (width - x0).min(4);
+    (
+        std::array::from_fn(|i| if i < n { depth[x0 + i] } else { 0.0 }),
+        std::array::from_fn(|i| if i < n { ids[x0 + i] as f32 } else { -1.0 }),
+    )
 }
 
 /// A packet of a strip with lanes to check ([`Redecide::fix_pending`]): its first pixel

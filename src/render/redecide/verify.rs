@@ -312,6 +312,21 @@ mod tests {
         (scene, camera)
     }
 
+    /// The oracle's distance to primitive `id` along pixel `(x, y)`'s f64 ray, with the oracle's
+    /// own kernel and constants (spheres and triangles: the shapes of [`grazing_scene`]).
+    fn oracle_t(scene: &Scene, r: &Redecide, (x, y): (usize, usize), id: usize) -> Option<f64> {
+        let d = r.tables.dir_x1(x, y);
+        match scene.shapes.get(id) {
+            Shape::Sphere { center, radius } => {
+                sphere_x1(&SphereK::new(center, radius, r.camera_eye), d)
+            }
+            Shape::Triangle(v) => {
+                TriangleK::triangle(&v, r.camera_eye).and_then(|k| polygon_x1(&k, d))
+            }
+            Shape::Quad(_) => None,
+        }
+    }
+
     /// A hit beyond its primitive's limits is kept exactly when its distance is within
     /// `BUDGET` of the oracle's for that primitive, measured one lane alone and by groups of four, on one primitive or two.
     #[test]
@@ -326,18 +341,7 @@ mod tests {
                 // the oracle's distance of each lane for each primitive, with the oracle's own
                 // kernel and constants
                 let t64: [[Option<f64>; 4]; 2] = std::array::from_fn(|id| {
-                    std::array::from_fn(|i| {
-                        let d = r.tables.dir_x1(x0 + i, y);
-                        match scene.shapes.get(id) {
-                            Shape::Sphere { center, radius } => {
-                                sphere_x1(&SphereK::new(center, radius, camera.eye), d)
-                            }
-                            Shape::Triangle(v) => {
-                                TriangleK::triangle(&v, camera.eye).and_then(|k| polygon_x1(&k, d))
-                            }
-                            Shape::Quad(_) => None,
-                        }
-                    })
+                    std::array::from_fn(|i| oracle_t(&scene, &r, (x0 + i, y), id))
                 });
                 // each primitive alone, then the two alternating lane by lane where both hit
                 let choices: [[usize; 4]; 3] = [[0; 4], [1; 4], [0, 1, 0, 1]];
@@ -391,18 +395,8 @@ mod tests {
         let mut cases = Vec::new();
         for y in 0..48 {
             for x in 0..64 {
-                let d = r.tables.dir_x1(x, y);
                 for id in 0..2 {
-                    let t64 = match scene.shapes.get(id) {
-                        Shape::Sphere { center, radius } => {
-                            sphere_x1(&SphereK::new(center, radius, camera.eye), d)
-                        }
-                        Shape::Triangle(v) => {
-                            TriangleK::triangle(&v, camera.eye).and_then(|k| polygon_x1(&k, d))
-                        }
-                        Shape::Quad(_) => None,
-                    };
-                    if let Some(t64) = t64 {
+                    if let Some(t64) = oracle_t(&scene, &r, (x, y), id) {
                         let at = |scale: f64| Suspect {
                             x,
                             y,
