@@ -133,6 +133,13 @@ impl Entry {
         }
     }
 
+    /// The primitive's kind ([`SPHERE`], [`TRIANGLE`], [`QUAD`]) and index in that kind's
+    /// packed store.
+    #[inline(always)]
+    fn kind_index(&self) -> (u32, usize) {
+        (self.prim >> KIND_SHIFT, (self.prim & INDEX_MASK) as usize)
+    }
+
     /// The tile's packets the entry may reach (bits).
     #[inline(always)]
     fn packets(&self) -> u32 {
@@ -148,8 +155,8 @@ impl Entry {
 }
 
 /// The top 24 bits of an f32 at most `v`, whatever the low 8 bits (the entry's packets) are:
-/// `v` rounded toward zero to 24 bits, less one unit of the 24th bit, so below `v` by less
-/// than 2^-14 relative. +inf becomes a finite value above 3.4e38 (no f32 hit distance in a
+/// `v` rounded toward zero to 24 bits, less one unit of the 24th bit, so below `v` (by less
+/// than 2^-14 relative where `v` is normal; a subnormal `v` may fall much further, still below). +inf becomes a finite value above 3.4e38 (no f32 hit distance in a
 /// scene `scene::validate` accepts comes near it), and every `v <= 0` (and NaN) a value below
 /// -3.4e38, whose sign alone then tells it apart.
 fn lower_bits(v: f32) -> u32 {
@@ -289,10 +296,8 @@ impl Tiles {
     /// primitive's trusted distance, which rounding down only makes safer.
     pub fn attach(&mut self, value: impl Fn(usize, usize) -> f32 + Sync) {
         self.entries.par_iter_mut().for_each(|e| {
-            let v = value(
-                (e.prim >> KIND_SHIFT) as usize,
-                (e.prim & INDEX_MASK) as usize,
-            );
+            let (kind, i) = e.kind_index();
+            let v = value(kind as usize, i);
             e.word = lower_bits(v) | e.packets();
         });
     }
@@ -367,7 +372,8 @@ impl Tiles {
             if e.packets() & span == 0 {
                 continue;
             }
-            visit(hit, e.prim >> KIND_SHIFT, (e.prim & INDEX_MASK) as usize);
+            let (kind, i) = e.kind_index();
+            visit(hit, kind, i);
         }
     }
 }
@@ -399,8 +405,8 @@ pub struct PacketLists {
 /// square root and division cost more than a mispredicted branch).
 #[inline(always)]
 fn test_entry(p: &Packed, e: &Entry, d: &[f32x8; 3], hit: &mut Hit8) -> f32x8 {
-    let i = (e.prim & INDEX_MASK) as usize;
-    match e.prim >> KIND_SHIFT {
+    let (kind, i) = e.kind_index();
+    match kind {
         SPHERE => {
             let (mask, t) = sphere_lanes_all(&p.spheres.get(i), d);
             hit.update(mask, t, p.spheres.id[i])

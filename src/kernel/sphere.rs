@@ -96,14 +96,23 @@ pub fn sphere_x8(s: &SphereK<f32>, d: &[f32x8; 3]) -> Option<(f32x8, f32x8)> {
     sphere_lanes(s, d)
 }
 
+/// `b = oc . d` and `disc = r^2 - |oc - b d|^2`, the steps of [`sphere_x1`] before its square
+/// root, in the lanes of `L` with the same operations in the same order: with `oc` and `r2`
+/// splatted from one sphere (the packet kernels) or one sphere per lane (`--precision auto`'s
+/// measurement of a strip's suspects, `render::redecide::verify`), each lane gives the 1-lane
+/// form's bits.
+#[inline(always)]
+pub fn sphere_disc<L: Lanes>(oc: [L; 3], r2: L, d: &[L; 3]) -> (L, L) {
+    let b = oc[0] * d[0] + oc[1] * d[1] + oc[2] * d[2];
+    let l = [oc[0] - b * d[0], oc[1] - b * d[1], oc[2] - b * d[2]];
+    (b, r2 - (l[0] * l[0] + l[1] * l[1] + l[2] * l[2]))
+}
+
 /// [`sphere_x1`] in the lanes of `L` (f32x8: [`sphere_x8`]; f64x4: `methods::wide64`), the same
 /// operations in the same order as the 1-lane form.
 #[inline(always)]
 pub fn sphere_lanes<L: Lanes>(s: &SphereK<L::Scalar>, d: &[L; 3]) -> Option<(L, L)> {
-    let oc = s.oc.map(L::splat);
-    let b = oc[0] * d[0] + oc[1] * d[1] + oc[2] * d[2];
-    let l = [oc[0] - b * d[0], oc[1] - b * d[1], oc[2] - b * d[2]];
-    let disc = L::splat(s.r2) - (l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
+    let (b, disc) = sphere_disc(s.oc.map(L::splat), L::splat(s.r2), d);
     let meets = disc.simd_ge(L::ZERO);
     if !meets.any() {
         return None;
@@ -120,10 +129,7 @@ pub fn sphere_lanes<L: Lanes>(s: &SphereK<L::Scalar>, d: &[L; 3]) -> Option<(L, 
 /// (as `polygon::polygon_lanes_all`).
 #[inline(always)]
 pub fn sphere_lanes_all<L: Lanes>(s: &SphereK<L::Scalar>, d: &[L; 3]) -> (L, L) {
-    let oc = s.oc.map(L::splat);
-    let b = oc[0] * d[0] + oc[1] * d[1] + oc[2] * d[2];
-    let l = [oc[0] - b * d[0], oc[1] - b * d[1], oc[2] - b * d[2]];
-    let disc = L::splat(s.r2) - (l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
+    let (b, disc) = sphere_disc(s.oc.map(L::splat), L::splat(s.r2), d);
     let meets = disc.simd_ge(L::ZERO);
     let q = b + disc.sqrt();
     let t = if s.inside { q } else { L::splat(s.c) / q };

@@ -47,9 +47,8 @@
 //! Through the tiles (the default) each lane carries the trusted distance of the primitive that
 //! won it, kept in the top 24 bits of the tile entry the walk already reads (`Tiles::attach`,
 //! rounded down), one blend per entry tested, so a packet's check is one compare; through the
-//! BVH or
-//! without acceleration a finished strip is scanned against the least trusted distance, and
-//! only the pixels beyond it look their limits up (`check.rs`). A re-decision walks that
+//! BVH or without acceleration a finished strip is scanned against the least trusted distance,
+//! and only the pixels beyond it look their limits up (`check.rs`). A re-decision walks that
 //! pixel's candidates in f64.
 
 use crate::accel::bvh::{ranges_x4d, trace_bvh_x1, trace_bvh_x4d};

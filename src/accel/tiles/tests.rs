@@ -320,11 +320,8 @@ fn attached_values_are_rounded_down_and_follow_the_winner() {
     for (e, b) in tiles.entries.iter().zip(&before) {
         assert_eq!(e.packets(), b.packets());
         assert!(stored(f32::INFINITY, b.attached()), "+inf until attached");
-        let (kind, i) = (
-            (e.prim >> KIND_SHIFT) as usize,
-            (e.prim & INDEX_MASK) as usize,
-        );
-        let (v, got) = (value(kind, i), e.attached());
+        let (kind, i) = e.kind_index();
+        let (v, got) = (value(kind as usize, i), e.attached());
         assert!(
             stored(v, got),
             "{v} stored as {got} (packets {:08b})",

@@ -55,7 +55,7 @@ impl Redecide<'_> {
             if pairs < whole && suspects(depth, pairs) != 0 {
                 self.fix_span(walk, (pairs, whole, y), (ids, depth), width, mine);
             }
-            // the last few pixels of the row, one at a time
+            // the last few pixels of the row (fewer than eight), in groups of four
             let suspect = (whole..width)
                 .filter(|&x| depth[x] > self.safe && depth[x] < f32::INFINITY)
                 .fold(0, |m, x| m | 1 << (x - whole));
@@ -258,9 +258,9 @@ impl Redecide<'_> {
 
     /// The packet at `(bx, by)` of a strip (`by`: its first row there) traced with each
     /// lane's trusted distance carried along (`carried`: the `hi` of the primitive that won
-    /// the lane, negative where the primitive has a lower limit too; [`super::carry`]), whose lanes
-    /// `suspect` (bits) lie beyond their carried distance: those beyond a finite `hi` are
-    /// untrusted as they stand, those on a primitive with a `lo` must look their limits up.
+    /// the lane, negative where the primitive has a lower limit too; [`super::carry`]), whose
+    /// lanes `suspect` (bits) lie beyond their carried distance: those beyond a finite `hi`
+    /// are untrusted as they stand, those on a primitive with a `lo` must look their limits up.
     /// The packet loop finds `suspect` with one compare, and comes here for the few packets
     /// where it is not empty.
     #[inline]

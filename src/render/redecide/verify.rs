@@ -6,7 +6,7 @@
 use super::{BUDGET, ORACLE_SLOTS, Redecide, Walk};
 use crate::kernel::methods::wide64::dir_x4d;
 use crate::kernel::polygon::{QuadK, TriangleK};
-use crate::kernel::sphere::SphereK;
+use crate::kernel::sphere::{SphereK, sphere_disc};
 use crate::scene::Shape;
 use std::cell::Ref;
 use wide::f64x4;
@@ -103,22 +103,28 @@ fn plane_within(k: &PlaneLanes, (sx, sy): (f64x4, f64x4), t32: f64x4) -> f64x4 {
 }
 
 /// The lanes whose f32 distance `t32` on a sphere is within [`BUDGET`] of the oracle's along
-/// the unit f64 rays `d`: `kernel::sphere::sphere_x1`'s operations in the same order, each
-/// lane with its own sphere, so each lane's distance is the oracle's bit for bit; a ray the
+/// the unit f64 rays `d`: `kernel::sphere::sphere_x1`'s operations in the same order
+/// (`sphere_disc`, then its root and division), each lane with its own sphere, so each lane's
+/// distance is the oracle's bit for bit; a ray the
 /// oracle does not see meeting the sphere ahead of the eye (its silhouette) is not verified.
 #[inline(always)]
 fn sphere_within(k: &SphereLanes, d: &[f64x4; 3], t32: f64x4) -> f64x4 {
-    let oc = k.oc.map(f64x4::new);
-    let b = oc[0] * d[0] + oc[1] * d[1] + oc[2] * d[2];
-    let l = [oc[0] - b * d[0], oc[1] - b * d[1], oc[2] - b * d[2]];
-    let disc = f64x4::new(k.r2) - (l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
+    let (hit, t64) = sphere_t64(k, d);
+    hit & (t32 - t64).abs().simd_le(f64x4::splat(BUDGET) * t64)
+}
+
+/// The oracle's distance to each lane's sphere along its ray, and the lanes where
+/// `kernel::sphere::sphere_x1` returns it (the line meets the sphere, ahead of the eye, finite).
+#[inline(always)]
+fn sphere_t64(k: &SphereLanes, d: &[f64x4; 3]) -> (f64x4, f64x4) {
+    let (b, disc) = sphere_disc(k.oc.map(f64x4::new), f64x4::new(k.r2), d);
     let q = b + disc.sqrt();
     let inside = f64x4::new(k.inside).simd_gt(f64x4::ZERO);
     let t64 = inside.select(q, f64x4::new(k.c) / q);
-    disc.simd_ge(f64x4::ZERO)
+    let hit = disc.simd_ge(f64x4::ZERO)
         & t64.simd_gt(f64x4::ZERO)
-        & t64.simd_lt(f64x4::splat(f64::INFINITY))
-        & (t32 - t64).abs().simd_le(f64x4::splat(BUDGET) * t64)
+        & t64.simd_lt(f64x4::splat(f64::INFINITY));
+    (hit, t64)
 }
 
 impl Redecide<'_> {
@@ -439,5 +445,48 @@ mod tests {
             mixed > 50 && kept > 500,
             "{mixed} mixed batches, {kept} kept"
         );
+    }
+
+    /// Four spheres in four lanes, each along its own pixel's ray, give `sphere_x1`'s answer
+    /// bit for bit: the same hit or miss, the same distance (eye outside and inside).
+    #[test]
+    fn sphere_lanes_of_four_spheres_are_the_oracle_bit_for_bit() {
+        let (scene, camera) = grazing_scene();
+        let packed = Packed::from_scene(&scene, camera.eye);
+        let r = Redecide::new(&scene, &camera, &packed);
+        let spheres = [
+            SphereK::new(DVec3::new(0.0, -1.0e4 - 1.5, -20.0), 1.0e4, camera.eye),
+            SphereK::new(DVec3::new(0.3, 0.1, -3.0), 0.7, camera.eye),
+            SphereK::new(DVec3::new(-0.2, 0.05, 0.1), 2.0, camera.eye),
+            SphereK::new(DVec3::new(1.0e3, 2.0e2, -4.0e3), 900.0, camera.eye),
+        ];
+        let (mut hits, mut misses) = (0, 0);
+        for y in 0..48 {
+            for x0 in (0..64).step_by(4) {
+                // lane i: sphere (i + x0 / 4 + y) % 4 along pixel (x0 + i, y)
+                let pick = |i: usize| (i + x0 / 4 + y) % 4;
+                let mut k = SphereLanes::default();
+                (0..4).for_each(|i| k.set(i, &spheres[pick(i)]));
+                let sx = f64x4::new(std::array::from_fn(|i| r.tables.sx[x0 + i]));
+                let d = dir_x4d(&r.tables, sx, f64x4::splat(r.tables.sy[y]));
+                let (hit, t64) = sphere_t64(&k, &d);
+                let (hit, t64) = (hit.to_bitmask(), t64.to_array());
+                for i in 0..4 {
+                    let one = sphere_x1(&spheres[pick(i)], r.tables.dir_x1(x0 + i, y));
+                    match one {
+                        Some(t) => {
+                            assert!(hit >> i & 1 == 1, "({}, {y}) lane {i}", x0 + i);
+                            assert_eq!(t.to_bits(), t64[i].to_bits(), "({}, {y})", x0 + i);
+                            hits += 1;
+                        }
+                        None => {
+                            assert!(hit >> i & 1 == 0, "({}, {y}) lane {i}", x0 + i);
+                            misses += 1;
+                        }
+                    }
+                }
+            }
+        }
+        assert!(hits > 500 && misses > 100, "{hits} hits, {misses} misses");
     }
 }
