@@ -221,11 +221,16 @@ pub(crate) struct PacketCones {
     /// `R` and `A`, rounded up.
     rad: f32,
     far: f32,
+    /// Angle between a pixel's exact ray and the f32 tables' point, plus an f32 silhouette's
+    /// band, radians: `max(32u, 2 (eps + Camera::direction_error))`, rounded up (for
+    /// [`PacketCones::sphere_beyond`] and [`PacketCones::polygon_beyond`]).
+    ray: f32,
 }
 
 impl PacketCones {
-    /// The bound for the ray tables `t` (padded to whole packets).
-    pub(crate) fn new(t: &crate::camera::RayTables<f32>) -> PacketCones {
+    /// The bound for the ray tables `t` (padded to whole packets) of a camera whose f32 rays
+    /// err by `direction_error` radians (`Camera::direction_error`).
+    pub(crate) fn new(t: &crate::camera::RayTables<f32>, direction_error: f64) -> PacketCones {
         use crate::kernel::packet::{BLOCK_H, BLOCK_W};
         let eps = f64::from(crate::kernel::edge_eps::<f32>());
         let half = |v: &[f32], n: usize| {
@@ -251,6 +256,7 @@ impl PacketCones {
             u: t.u,
             rad: crate::real::f32_up(rad),
             far: crate::real::f32_up(far),
+            ray: crate::real::f32_up(ANGLE_MARGIN.max(2.0 * (eps + direction_error))),
         }
     }
 
@@ -328,5 +334,98 @@ impl PacketCones {
         ];
         let cross2 = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
         !cross2.simd_gt(f32x8::splat(rhs * rhs)).to_bitmask() & 0xFF
+    }
+
+    /// The packets (bits) of the tile with centre points `c` where some pixel's exact ray may
+    /// meet sphere `i` of `s` farther than `reach` (every packet when the eye is inside it).
+    ///
+    /// Derivation. The sphere the f32 constants give (centre `oc`, radius `r`) is within
+    /// `e = 4u (L + r)` of the exact one (`L = |oc|`; centre and radius rounded once), so the
+    /// sphere of radius `r' = r - e` about `oc` lies inside the exact sphere: a ray that meets
+    /// it meets the exact sphere no farther. With the eye outside (`L > r'`, `k = L^2 - r'^2`),
+    /// a unit ray at distance `rho = |oc x d|` from the centre meets it first at
+    /// `t(rho) = sqrt(L^2 - rho^2) - sqrt(r'^2 - rho^2)`, which grows with `rho` on `[0, r']`.
+    /// The roots sum to `2 sqrt(L^2 - rho^2)` and multiply to `k` (Vieta), so `t(rho) = T` at
+    /// `rho_T^2 = L^2 - ((T + k/T) / 2)^2`, for `L - r' <= T < sqrt(k)`; below `L - r'` no ray
+    /// is known to stay within `T`. A packet's rays `a / |a|` (the rectangle of
+    /// [`PacketCones`], `|a| >= |c| - R`) have `rho <= (|oc x c| + L R) / (|c| - R)`, and the
+    /// exact rays lie within `ray` of the f32 tables' points. So when
+    /// `|oc x c| <= (rho_T - 2 ray L)(|c| - R) - L R`, every exact ray of the packet passes at
+    /// most `rho_T - ray L` from the centre: it meets the small sphere within `T`, hence the
+    /// exact one too, and stays `ray L` inside the small sphere's silhouette. That is more than
+    /// the band (`6u` plus the ray's error, under half of `ray`) where the f32 kernel may meet
+    /// a ray the exact one misses; the rest covers this test's f32 cross product. The f64 terms
+    /// are rounded towards the safe side, the f32 lanes by 1e-5 relative.
+    #[inline]
+    pub(crate) fn sphere_beyond(
+        &self,
+        c: &[wide::f32x8; 3],
+        s: &crate::soa::Spheres,
+        i: usize,
+        reach: f64,
+    ) -> u32 {
+        use wide::f32x8;
+        let oc = [s.ocx[i], s.ocy[i], s.ocz[i]];
+        let l = oc.map(f64::from).iter().map(|v| v * v).sum::<f64>().sqrt();
+        let r = f64::from(s.r2[i]).sqrt() - 4.0 * U32 * (l + f64::from(s.r2[i]).sqrt());
+        let (k, t, ray) = (l * l - r * r, reach, f64::from(self.ray));
+        let rho2 = l * l - ((t + k / t) / 2.0).powi(2);
+        let slope = rho2.max(0.0).sqrt() * (1.0 - 1e-6) - 2.0 * ray * l;
+        // the eye inside, `t` at or past the silhouette or short of the sphere (or NaN)
+        if s.inside[i] || !(r > 0.0 && l > r && t > 0.0 && t * t < k && slope > 0.0) {
+            return 0xFF;
+        }
+        let slope = crate::real::f32_down(slope);
+        let off = crate::real::f32_up(l * f64::from(self.rad) * (1.0 + 1e-6));
+        let o = oc.map(f32x8::splat);
+        let x = [
+            o[1] * c[2] - o[2] * c[1],
+            o[2] * c[0] - o[0] * c[2],
+            o[0] * c[1] - o[1] * c[0],
+        ];
+        let cross2 = (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) * f32x8::splat(1.0 + 1e-5);
+        let len = (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt() * f32x8::splat(1.0 - 1e-5);
+        let rhs = (f32x8::splat(slope) * (len - f32x8::splat(self.rad)) - f32x8::splat(off))
+            * f32x8::splat(1.0 - 1e-5);
+        let within = rhs.simd_gt(f32x8::ZERO) & cross2.simd_le(rhs * rhs);
+        !within.to_bitmask() & 0xFF
+    }
+
+    /// The packets (bits) of the tile with centre points `c` where some pixel's exact ray may
+    /// meet the plane of polygon `i` (unit normal `nrm`, distance `p > 0`, oriented so that
+    /// hits have `d . nrm > 0`) farther than `reach`.
+    ///
+    /// Derivation. A unit ray meets the plane at `t = p / (d . N)` where `d . N > 0`. Over a
+    /// packet's rectangle (as in [`PacketCones::polygon`]) `a . N >= c . N - S` with
+    /// `S = hx |N . r| + hy |N . u|`, and `|a| <= |c| + R`, so every hit of the packet has
+    /// `t <= p (|c| + R) / (c . N - S)` when `c . N > S`, and there is none when
+    /// `c . N < -S`. `tol` (as there) covers the exact rays' distance from the tables' points
+    /// and this test's f32 rounding; the lanes are rounded towards the safe side by 1e-5.
+    #[inline]
+    pub(crate) fn polygon_beyond<const N: usize>(
+        &self,
+        c: &[wide::f32x8; 3],
+        poly: &crate::soa::Polygons<N>,
+        i: usize,
+        reach: f64,
+    ) -> u32 {
+        use wide::f32x8;
+        if reach.is_nan() || reach <= 0.0 {
+            return 0xFF;
+        }
+        let n = [poly.nrm[0][i], poly.nrm[1][i], poly.nrm[2][i]];
+        let along = |v: [f32; 3]| (n[0] * v[0] + n[1] * v[1] + n[2] * v[2]).abs();
+        let [hx, hy] = self.half;
+        let slack =
+            f32x8::splat((hx * along(self.r) + hy * along(self.u) + self.tol) * (1.0 + 1e-5));
+        let dot = c[0] * f32x8::splat(n[0]) + c[1] * f32x8::splat(n[1]) + c[2] * f32x8::splat(n[2]);
+        let len = (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
+        let far =
+            f32x8::splat(poly.p[i]) * (len + f32x8::splat(self.rad)) * f32x8::splat(1.0 + 1e-5);
+        let cos = dot - slack;
+        let within = (cos.simd_gt(f32x8::ZERO)
+            & far.simd_le(cos * f32x8::splat(crate::real::f32_down(reach) * (1.0 - 1e-5))))
+            | (dot + slack).simd_lt(f32x8::ZERO);
+        !within.to_bitmask() & 0xFF
     }
 }

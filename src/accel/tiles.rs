@@ -78,6 +78,7 @@
 //! crossing the eye's plane, the eye inside a sphere, rectangles clipped at the border).
 
 use super::bvh::ranges_x4d;
+use super::footprint::PacketCones;
 use crate::kernel::methods::wide64::Hit4d;
 use crate::kernel::packet::{BLOCK_H, BLOCK_W};
 use crate::kernel::polygon::polygon_lanes_all;
@@ -175,6 +176,10 @@ pub struct Tiles {
     /// `start[t]..start[t + 1]` is tile t's range of `entries` (tiles in row-major order).
     start: Vec<u32>,
     entries: Vec<Entry>,
+    /// Per tile, once values are attached ([`Tiles::attach`]; empty until then): the packets
+    /// (bits) where some entry's hits may lie beyond its value. A tile with none walks without
+    /// carrying ([`PacketLists::carries`]).
+    carries: Vec<u8>,
 }
 
 impl Tiles {
@@ -216,6 +221,7 @@ impl Tiles {
         let list = self.list(tx, ty);
         let n = list.len();
         lists.tile = (tx, ty);
+        lists.carry = self.carries.get(ty * self.cols + tx).copied().unwrap_or(0);
         lists.len = [0; PACKETS];
         lists.stride = n;
         if lists.index.len() < PACKETS * n {
@@ -289,17 +295,59 @@ impl Tiles {
     }
 
     /// Attaches `value(kind, index)` to every primitive (kind 0 sphere, 1 triangle, 2 quad;
-    /// index into that kind's packed store), to be handed back by
-    /// [`Tiles::trace_packet_x8_carrying`] with the lanes the primitive wins. Stored in the
+    /// index into `packed`, the store the tiles were built over, rearranged), to be handed back
+    /// by [`Tiles::trace_packet_x8_carrying`] with the lanes the primitive wins. Stored in the
     /// top 24 bits of the entry, rounded down ([`lower_bits`]): by less than 2^-14 relative,
     /// +inf to above 3.4e38, any `v <= 0` to below -3.4e38. `--precision auto` attaches each
     /// primitive's trusted distance, which rounding down only makes safer.
-    pub fn attach(&mut self, value: impl Fn(usize, usize) -> f32 + Sync) {
-        self.entries.par_iter_mut().for_each(|e| {
-            let (kind, i) = e.kind_index();
-            let v = value(kind as usize, i);
-            e.word = lower_bits(v) | e.packets();
-        });
+    ///
+    /// Also marks, per tile, the packets whose hits on an entry's primitive may lie beyond the
+    /// value stored, `s`: those where some pixel's exact ray (`camera`'s) may meet it beyond
+    /// `s (1 - 2 error)` (`PacketCones::sphere_beyond`, `PacketCones::polygon_beyond`), where
+    /// `error` bounds the relative error of the kernel's f32 distances against the exact ones
+    /// up to `s`: a hit there is at most `s (1 - 2 error)(1 + error) < s`. A +inf value marks
+    /// none, a value `<= 0` all the entry's packets. A tile where no packet is marked walks
+    /// without carrying (`PacketLists::carries`).
+    pub fn attach(
+        &mut self,
+        packed: &Packed,
+        camera: &crate::camera::Camera,
+        error: f64,
+        value: impl Fn(usize, usize) -> f32 + Sync,
+    ) {
+        let tables = camera.tables::<f32>(BLOCK_W as u32, BLOCK_H as u32);
+        let cones = PacketCones::new(&tables, camera.direction_error());
+        let mut lists = Vec::with_capacity(self.start.len() - 1);
+        let mut rest = self.entries.as_mut_slice();
+        for w in self.start.windows(2) {
+            let (list, tail) = rest.split_at_mut((w[1] - w[0]) as usize);
+            lists.push(list);
+            rest = tail;
+        }
+        let cols = self.cols;
+        let carries = lists
+            .into_par_iter()
+            .enumerate()
+            .map(|(t, list)| {
+                let c = PacketCones::centres(&tables, (t % cols, t / cols));
+                let mut marks = 0;
+                for e in list {
+                    let (kind, i) = e.kind_index();
+                    let v = value(kind as usize, i);
+                    e.word = lower_bits(v) | e.packets();
+                    let reach = f64::from(e.attached()) * (1.0 - 2.0 * error);
+                    let beyond = match kind {
+                        _ if v == f32::INFINITY => 0,
+                        SPHERE => cones.sphere_beyond(&c, &packed.spheres, i, reach),
+                        TRIANGLE => cones.polygon_beyond(&c, &packed.triangles, i, reach),
+                        _ => cones.polygon_beyond(&c, &packed.quads, i, reach),
+                    };
+                    marks |= beyond & e.packets();
+                }
+                marks as u8
+            })
+            .collect();
+        self.carries = carries;
     }
 }
 
@@ -398,6 +446,19 @@ pub struct PacketLists {
     index: Vec<u32>,
     stride: usize,
     len: [usize; PACKETS],
+    /// The packets (bits) some entry of the tile may hit beyond its attached value
+    /// ([`Tiles::attach`]; none before a value is attached).
+    carry: u8,
+}
+
+impl PacketLists {
+    /// Whether some packet of the tile may have hits beyond the values attached to their
+    /// primitives: when none may, [`Tiles::trace_packet_x8`] stands for
+    /// [`Tiles::trace_packet_x8_carrying`], whose carried values would never be exceeded.
+    #[inline(always)]
+    pub fn carries(&self) -> bool {
+        self.carry != 0
+    }
 }
 
 /// Tests entry `e` against the rays `d`, keeping the nearest hits in `hit`. Polygons without

@@ -243,11 +243,14 @@ pub(crate) fn packet_blocks<const BW: usize>(
                 let rows = ids.len() / width;
                 let mut lists = PacketLists::default();
                 let (mut mine, walk) = (Vec::new(), walk());
-                // (sized for the few packets with suspects a strip usually has)
-                let mut pending = Vec::with_capacity(if walk.is_some() { 64 } else { 0 });
+                // (sized for every packet of the strip: on 65,536 spheres most have suspects,
+                // and growing the vector cost more than allocating it whole)
+                let packets = width.div_ceil(BLOCK_W) * (TILE_H / BLOCK_H);
+                let mut pending = Vec::with_capacity(if walk.is_some() { packets } else { 0 });
                 for tx in 0..width.div_ceil(TILE_W) {
                     let tile = (tx, y_start / TILE_H);
                     tiles.split_tile(tile, &mut lists);
+                    let carry = lists.carries();
                     for by in (0..rows).step_by(BLOCK_H) {
                         for col in 0..TILE_W / BLOCK_W {
                             let bx = tx * TILE_W + col * BLOCK_W;
@@ -259,8 +262,9 @@ pub(crate) fn packet_blocks<const BW: usize>(
                             let mut hit = Hit8::new(active);
                             let k = by / BLOCK_H * (TILE_W / BLOCK_W) + col;
                             match &walk {
-                                // auto: each lane carries its winner's trusted distance
-                                Some((r, _)) => {
+                                // auto: each lane carries its winner's trusted distance, in
+                                // the tiles where some packet's hits may exceed it
+                                Some((r, _)) if carry => {
                                     let carried = tiles.trace_packet_x8_carrying(
                                         &p.packed, &lists, k, &d, &mut hit,
                                     );
@@ -270,7 +274,7 @@ pub(crate) fn packet_blocks<const BW: usize>(
                                         pending.push(r.pending((bx, by), suspect, carried));
                                     }
                                 }
-                                None => tiles.trace_packet_x8(&p.packed, &lists, k, &d, &mut hit),
+                                _ => tiles.trace_packet_x8(&p.packed, &lists, k, &d, &mut hit),
                             }
                             store((ids, depth), rows, bx, by, &hit);
                         }

@@ -46,7 +46,11 @@
 //! Cost: the bounds are solved for `t` once per primitive in setup (8 bytes per primitive).
 //! Through the tiles (the default) each lane carries the trusted distance of the primitive that
 //! won it, kept in the top 24 bits of the tile entry the walk already reads (`Tiles::attach`,
-//! rounded down), one blend per entry tested, so a packet's check is one compare; through the
+//! rounded down), one blend per entry tested, so a packet's check is one compare. Only the tiles
+//! where some packet's hits may pass a trusted distance carry it: in setup, each entry's packets
+//! are bounded by the exact distances their rays may meet the primitive at
+//! (`PacketCones::sphere_beyond`, `PacketCones::polygon_beyond`; `Redecide::attach_to`), and
+//! a tile none of whose packets may exceed walks as `--precision f32` does. Through the
 //! BVH or without acceleration a finished strip is scanned against the least trusted distance,
 //! and only the pixels beyond it look their limits up (`check.rs`). A re-decision walks that
 //! pixel's candidates in f64.
@@ -234,12 +238,17 @@ impl<'s> Redecide<'s> {
         }
     }
 
-    /// Attaches to each primitive of `tiles` (built over `packed`) the trusted distance a lane
-    /// it wins carries ([`carry`]): the tile entries hand it to the packet walk with the lanes
-    /// their primitive takes.
-    pub(crate) fn attach_to(&self, tiles: &mut Tiles, packed: &Packed) {
+    /// Attaches to each primitive of `tiles` (built over `packed` for `camera`) the trusted
+    /// distance a lane it wins carries ([`carry`]): the tile entries hand it to the packet walk
+    /// with the lanes their primitive takes. Up to a trusted distance the f32 distances err by
+    /// at most [`BUDGET`] against the oracle's (first order; [`TOLERANCE`] with the rest), so
+    /// the tiles mark the packets that may exceed it by the exact hits their rays may have, and
+    /// the others walk without carrying.
+    pub(crate) fn attach_to(&self, tiles: &mut Tiles, packed: &Packed, camera: &Camera) {
         let ids = [&packed.spheres.id, &packed.triangles.id, &packed.quads.id];
-        tiles.attach(|kind, i| carry(self.limits[ids[kind][i] as usize]));
+        tiles.attach(packed, camera, TOLERANCE, |kind, i| {
+            carry(self.limits[ids[kind][i] as usize])
+        });
     }
 
     /// The centre and radius of primitive `id` when it is a sphere.

@@ -98,7 +98,7 @@ impl<'s> Renderer<'s> {
         let mut p = PacketScene::new(scene, camera, accel);
         let redecide = Redecide::new(scene, camera, &p.packed);
         if let Some(tiles) = &mut p.tiles {
-            redecide.attach_to(tiles, &p.packed);
+            redecide.attach_to(tiles, &p.packed, camera);
         }
         let tables = camera.tables(BLOCK_W as u32, BLOCK_H as u32);
         Renderer {

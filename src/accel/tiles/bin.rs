@@ -119,7 +119,7 @@ impl Tiles {
         // overlaps, less those `PacketCones` finds wholly outside one of a polygon's edge
         // planes or too far from a sphere. Read from `packed`, still in its old order.
         let tables = camera.tables::<f32>(BLOCK_W as u32, BLOCK_H as u32);
-        let cones = PacketCones::new(&tables);
+        let cones = PacketCones::new(&tables, camera.direction_error());
         let centres: Vec<[f32x8; 3]> = (0..cols * rows)
             .into_par_iter()
             .map(|t| PacketCones::centres(&tables, (t % cols, t / cols)))
@@ -209,6 +209,7 @@ impl Tiles {
                 cols,
                 start,
                 entries,
+                carries: Vec::new(),
             },
             order,
         )

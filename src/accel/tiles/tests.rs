@@ -316,7 +316,7 @@ fn attached_values_are_rounded_down_and_follow_the_winner() {
         v if v <= 0.0 => got < -3.4e38 && got.is_finite(),
         v => got < v && got >= v * (1.0 - 2f32.powi(-14)),
     };
-    tiles.attach(value);
+    tiles.attach(&packed, &camera, 1e-5, value);
     for (e, b) in tiles.entries.iter().zip(&before) {
         assert_eq!(e.packets(), b.packets());
         assert!(stored(f32::INFINITY, b.attached()), "+inf until attached");
@@ -372,4 +372,88 @@ fn attached_values_are_rounded_down_and_follow_the_winner() {
         }
     }
     assert!(checked > 1000, "{checked} lanes");
+}
+
+/// `attach` marks, per tile, every packet where a pixel's exact ray may meet an entry's
+/// primitive beyond the reach `s (1 - 2 error)` of the value `s` stored: checked pixel by pixel with the
+/// oracle's f64 kernels along the oracle's rays, for values cutting through each primitive
+/// (spheres between their nearest point and their silhouette, polygons at 1.5 to 13 times
+/// their plane distance), at three fields of view. The marks must also leave packets out,
+/// and the marked ones include hits beyond the reach (the test can tell a mark from none).
+#[test]
+fn packets_left_unmarked_have_no_exact_hit_beyond_the_reach() {
+    use crate::kernel::polygon::polygon_x1;
+    use crate::kernel::sphere::sphere_x1;
+    use crate::soa::{Records, SceneRecords};
+    const ERROR: f64 = 1e-5;
+    for (seed, fov) in [(5, 60.0), (6, 150.0), (7, 20.0)] {
+        let eye = DVec3::new(0.3, 0.2, 1.0);
+        let scene = scene(seed, eye, DVec3::new(0.0, 0.0, -3.0), fov);
+        let (w, h) = (97, 61);
+        let camera = Camera::new(&scene.camera, fov, w as u32, h as u32);
+        let mut packed = Packed::new(&Prepared::new(&scene, eye));
+        let (mut tiles, order) = Tiles::new(&scene, &packed, &camera);
+        packed.permute(&order);
+        let records = SceneRecords::new(&scene, &packed, eye);
+        let frac = |i: usize| [0.3, 0.9, 0.999, 0.999_99][i % 4];
+        let value = |kind: usize, i: usize| -> f32 {
+            match kind {
+                0 => {
+                    let k = records.sphere(i).expect("a sphere").0;
+                    if k.inside {
+                        // (every packet would be marked)
+                        return f32::INFINITY;
+                    }
+                    let l = k.oc.iter().map(|v| v * v).sum::<f64>().sqrt();
+                    let (near, rim) = (l - k.r2.sqrt(), k.c.max(0.0).sqrt());
+                    (near + frac(i) * (rim - near)) as f32
+                }
+                1 => packed.triangles.p[i] * [1.5, 4.0, 13.0][i % 3],
+                _ => packed.quads.p[i] * [1.5, 4.0, 13.0][i % 3],
+            }
+        };
+        tiles.attach(&packed, &camera, ERROR, value);
+        let tables = camera.tables::<f64>(1, 1);
+        let (mut unmarked, mut marked_beyond) = (0, 0);
+        for y in 0..h {
+            for x in 0..w {
+                let d = tables.dir_x1(x, y);
+                let k = y % TILE_H / BLOCK_H * (TILE_W / BLOCK_W) + x % TILE_W / BLOCK_W;
+                let t = (y / TILE_H) * tiles.cols + x / TILE_W;
+                let range = tiles.start[t] as usize..tiles.start[t + 1] as usize;
+                let marked = tiles.carries[t] >> k & 1 == 1;
+                for e in &tiles.entries[range] {
+                    if e.packets() >> k & 1 == 0 {
+                        continue;
+                    }
+                    let (kind, i) = e.kind_index();
+                    let hit = match kind {
+                        SPHERE => records.sphere(i).and_then(|(k, _)| sphere_x1(&k, d)),
+                        TRIANGLE => records.triangle(i).and_then(|(k, _)| polygon_x1(&k, d)),
+                        _ => records.quad(i).and_then(|(k, _)| polygon_x1(&k, d)),
+                    };
+                    let Some(t64) = hit else { continue };
+                    let reach = f64::from(e.attached()) * (1.0 - 2.0 * ERROR);
+                    if !marked {
+                        assert!(
+                            t64 <= reach,
+                            "seed {seed}: kind {kind} #{i} at ({x}, {y}): {t64} beyond {reach}, \
+                             packet {k} unmarked"
+                        );
+                        unmarked += 1;
+                    } else if t64 > reach {
+                        marked_beyond += 1;
+                    }
+                }
+            }
+        }
+        assert!(
+            unmarked > 1000,
+            "seed {seed}: {unmarked} hits in unmarked packets"
+        );
+        assert!(
+            marked_beyond > 100,
+            "seed {seed}: {marked_beyond} hits beyond, marked"
+        );
+    }
 }
