@@ -271,7 +271,14 @@ pub(crate) fn packet_blocks<const BW: usize>(
                                     // a lane without a hit carries +inf at +inf: never beyond
                                     let suspect = hit.t.simd_gt(carried).to_bitmask();
                                     if suspect != 0 {
-                                        pending.push(r.pending((bx, by), suspect, carried));
+                                        let sphere =
+                                            |id| tiles.sphere_in_packet(&p.packed, &lists, k, id);
+                                        pending.push(r.pending(
+                                            (bx, by),
+                                            (suspect, carried),
+                                            hit.id,
+                                            sphere,
+                                        ));
                                     }
                                 }
                                 _ => tiles.trace_packet_x8(&p.packed, &lists, k, &d, &mut hit),

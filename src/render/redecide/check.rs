@@ -262,21 +262,40 @@ impl Redecide<'_> {
     /// lanes `suspect` (bits) lie beyond their carried distance: those beyond a finite `hi`
     /// are untrusted as they stand, those on a primitive with a `lo` must look their limits up.
     /// The packet loop finds `suspect` with one compare, and comes here for the few packets
-    /// where it is not empty.
+    /// where it is not empty. `ids` are the lanes' winners, and `sphere_of(id)` the index of
+    /// such a winner in the packed sphere store when it is a sphere, found where the packet's
+    /// data is still in cache (the tiles: `Tiles::sphere_in_packet`).
     #[inline]
     pub(crate) fn pending(
         &self,
         (bx, by): (usize, usize),
-        suspect: u32,
-        carried: f32x8,
+        (suspect, carried): (u32, f32x8),
+        ids: f32x8,
+        sphere_of: impl Fn(f32) -> Option<u32>,
     ) -> Pending {
         // -inf arrives below -3.4e38 (`Tiles::attach` rounds down): the sign tells it
         let lookup = carried.simd_lt(f32x8::ZERO).to_bitmask() & suspect;
+        let mut spheres = [NO_SPHERE; 8];
+        if !self.spheres.is_empty() {
+            let ids = ids.to_array();
+            let mut m = suspect;
+            while m != 0 {
+                let lane = m.trailing_zeros() as usize;
+                m &= m - 1;
+                spheres[lane] = sphere_of(ids[lane]).unwrap_or(NO_SPHERE);
+                // asked for now, read once the strip is done (one cache miss a suspect on
+                // 65,536 spheres, 1.5-2% of auto's time there: README, "Precision")
+                if let Some(s) = self.spheres.get(spheres[lane] as usize) {
+                    prefetch(s);
+                }
+            }
+        }
         Pending {
             bx,
             by,
             untrusted: suspect & !lookup,
             lookup,
+            spheres,
         }
     }
 
@@ -298,7 +317,10 @@ impl Redecide<'_> {
         mine: &mut Vec<usize>,
     ) {
         // (packet, lane, hit) of every lane to measure, in packet order
-        let mut suspects = Vec::with_capacity(2 * pending.len());
+        let lanes = pending
+            .iter()
+            .map(|p| (p.untrusted | p.lookup).count_ones());
+        let mut suspects = Vec::with_capacity(lanes.sum::<u32>() as usize);
         for (k, p) in pending.iter().enumerate() {
             let mut m = p.untrusted | p.lookup;
             while m != 0 {
@@ -316,12 +338,26 @@ impl Redecide<'_> {
                     }
                 }
                 // read now, so that the reads' cache misses overlap
-                match self.sphere(id as usize) {
+                let sphere = Some(p.spheres[lane as usize]).filter(|&s| s != NO_SPHERE);
+                match sphere
+                    .map(|at| self.spheres[at as usize])
+                    .or_else(|| self.sphere(id as usize))
+                {
                     Some(sphere) => drop(std::hint::black_box(sphere)),
                     None => drop(std::hint::black_box(self.scene.shapes.get(id as usize))),
                 }
                 let y = y_start + y;
-                suspects.push((k, lane, Suspect { x, y, id, t }));
+                suspects.push((
+                    k,
+                    lane,
+                    Suspect {
+                        x,
+                        y,
+                        id,
+                        t,
+                        sphere,
+                    },
+                ));
             }
         }
         // the lanes that stay untrusted once measured, still in packet order
@@ -355,6 +391,21 @@ impl Redecide<'_> {
     }
 }
 
+/// Asks the processor to bring `v`'s first cache line towards the core (into L2 and closer),
+/// without waiting for it: a hint, which changes no result.
+#[inline(always)]
+fn prefetch<T>(v: &T) {
+    #[cfg(target_arch = "x86_64")]
+    // SAFETY: a prefetch never faults and reads nothing into the program's state, whatever
+    // the address; `v` is a valid reference besides. SSE is part of every x86-64 processor.
+    unsafe {
+        use std::arch::x86_64::{_MM_HINT_T1, _mm_prefetch};
+        _mm_prefetch::<_MM_HINT_T1>((v as *const T).cast());
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = v;
+}
+
 /// The depths and ids of the four pixels `x0..x0 + 4` of a row (`ids`, `depth`, `width` wide),
 /// as the group checks take them: past the row's end, depth 0 and id -1 (no hit).
 fn group((ids, depth): (&[i32], &[f32]), x0: usize, width: usize) -> ([f32; 4], [f32; 4]) {
@@ -373,7 +424,13 @@ pub(crate) struct Pending {
     pub(crate) by: usize,
     pub(crate) untrusted: u32,
     pub(crate) lookup: u32,
+    /// Per lane, the index of its winner in the packed sphere store, where it is known to
+    /// be a sphere ([`NO_SPHERE`] elsewhere).
+    pub(crate) spheres: [u32; 8],
 }
+
+/// [`Pending::spheres`] of a lane whose winner is not known to be a sphere.
+const NO_SPHERE: u32 = u32::MAX;
 
 #[cfg(test)]
 mod tests {

@@ -46,6 +46,9 @@ pub(super) struct Suspect {
     pub(super) y: usize,
     pub(super) id: f32,
     pub(super) t: f32,
+    /// The primitive's index in the packed sphere store, where the walk knows it to be a
+    /// sphere (the tiles: [`super::check::Pending`]); else it is looked up by `id`.
+    pub(super) sphere: Option<u32>,
 }
 
 /// Four spheres' oracle constants ([`SphereK<f64>`]), one per lane.
@@ -146,6 +149,7 @@ impl Redecide<'_> {
                 y,
                 id: id[i],
                 t: t[i],
+                sphere: None,
             },
             _ => Suspect::default(),
         });
@@ -162,7 +166,11 @@ impl Redecide<'_> {
         let (mut is_sphere, mut is_plane) = (0, 0);
         for (i, h) in s.iter().enumerate().filter(|(i, _)| lanes >> i & 1 == 1) {
             let id = h.id as usize;
-            if let Some((center, radius)) = self.sphere(id) {
+            let sphere = match h.sphere {
+                Some(at) => Some(self.spheres[at as usize]),
+                None => self.sphere(id),
+            };
+            if let Some((center, radius)) = sphere {
                 // a sphere's constants cost less to compute than to look up
                 spheres.set(i, &SphereK::new(center, radius, self.camera_eye));
                 is_sphere |= 1 << i;
@@ -408,6 +416,7 @@ mod tests {
                             y,
                             id: id as f32,
                             t: (t64 * scale) as f32,
+                            sphere: None,
                         };
                         cases.push((at(1.0), true));
                         cases.push((at(1.0 + 2.0 * BUDGET), false));
