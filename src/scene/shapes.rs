@@ -191,6 +191,19 @@ impl Shapes {
         }
     }
 
+    /// Where primitive `id`'s data starts in memory: what [`Shapes::get`] reads first (a loose
+    /// shape, or a mesh face's vertex indices). For cache hints; nothing reads through it.
+    /// Panics when `id >= len()`.
+    #[inline]
+    pub fn address(&self, id: usize) -> *const u8 {
+        assert!(id < self.len, "shape id {id} of {}", self.len);
+        let run = self.runs[self.run_of(id)];
+        match run.src {
+            Src::Loose(at) => (&self.loose[at + id - run.first] as *const Shape).cast(),
+            Src::Mesh(k) => self.meshes[k].0.faces[id - run.first].as_ptr().cast(),
+        }
+    }
+
     /// Primitive `id`. Panics when `id >= len()`.
     #[inline]
     pub fn get(&self, id: usize) -> Shape {

@@ -275,18 +275,23 @@ impl Redecide<'_> {
     ) -> Pending {
         // -inf arrives below -3.4e38 (`Tiles::attach` rounds down): the sign tells it
         let lookup = carried.simd_lt(f32x8::ZERO).to_bitmask() & suspect;
-        let mut spheres = [NO_SPHERE; 8];
-        if !self.spheres.is_empty() {
-            let ids = ids.to_array();
-            let mut m = suspect;
-            while m != 0 {
-                let lane = m.trailing_zeros() as usize;
-                m &= m - 1;
-                spheres[lane] = sphere_of(ids[lane]).unwrap_or(NO_SPHERE);
-                // asked for now, read once the strip is done (one cache miss a suspect on
-                // 65,536 spheres, 1.5-2% of auto's time there: README, "Precision")
-                if let Some(s) = self.spheres.get(spheres[lane] as usize) {
-                    prefetch(s);
+        let (mut spheres, ids) = ([NO_SPHERE; 8], ids.to_array());
+        let mut m = suspect;
+        while m != 0 {
+            let lane = m.trailing_zeros() as usize;
+            m &= m - 1;
+            // what the lane's measurement reads, asked for now and read once the strip is
+            // done: a cache miss a suspect on 65,536 primitives, 1.5-2% of auto's time there
+            // (README, "Precision")
+            match (!self.spheres.is_empty()).then(|| sphere_of(ids[lane])) {
+                Some(Some(at)) => {
+                    spheres[lane] = at;
+                    prefetch((&self.spheres[at as usize] as *const (glam::DVec3, f64)).cast());
+                }
+                _ => {
+                    let shape = self.scene.shapes.address(ids[lane] as usize);
+                    prefetch(shape);
+                    prefetch(shape.wrapping_add(64));
                 }
             }
         }
@@ -391,19 +396,19 @@ impl Redecide<'_> {
     }
 }
 
-/// Asks the processor to bring `v`'s first cache line towards the core (into L2 and closer),
+/// Asks the processor to bring the cache line of `p` towards the core (into L2 and closer),
 /// without waiting for it: a hint, which changes no result.
 #[inline(always)]
-fn prefetch<T>(v: &T) {
+fn prefetch(p: *const u8) {
     #[cfg(target_arch = "x86_64")]
     // SAFETY: a prefetch never faults and reads nothing into the program's state, whatever
-    // the address; `v` is a valid reference besides. SSE is part of every x86-64 processor.
+    // the address. SSE is part of every x86-64 processor.
     unsafe {
         use std::arch::x86_64::{_MM_HINT_T1, _mm_prefetch};
-        _mm_prefetch::<_MM_HINT_T1>((v as *const T).cast());
+        _mm_prefetch::<_MM_HINT_T1>(p.cast());
     }
     #[cfg(not(target_arch = "x86_64"))]
-    let _ = v;
+    let _ = p;
 }
 
 /// The depths and ids of the four pixels `x0..x0 + 4` of a row (`ids`, `depth`, `width` wide),
