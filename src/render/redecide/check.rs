@@ -310,9 +310,9 @@ impl Redecide<'_> {
     /// image in `mine`. The strip's suspects are measured four at a time, whatever their
     /// packets and primitives ([`Redecide::verified_lanes`]): most packets have one, and
     /// measured packet by packet three of the four f64 lanes went unused. Each suspect's shape
-    /// is read as it is listed, before any is measured: the reads are independent, so their
-    /// cache misses overlap (on 65,536 random primitives, most of a suspect's cost when each
-    /// was read as it was measured).
+    /// was asked for as its packet was traced ([`Redecide::pending`]), so that its cache miss
+    /// (on 65,536 random primitives, most of a suspect's cost when each was read as it was
+    /// measured) overlaps the rest of the strip.
     pub(crate) fn fix_pending(
         &self,
         walk: &Walk,
@@ -342,15 +342,7 @@ impl Redecide<'_> {
                         continue;
                     }
                 }
-                // read now, so that the reads' cache misses overlap
                 let sphere = Some(p.spheres[lane as usize]).filter(|&s| s != NO_SPHERE);
-                match sphere
-                    .map(|at| self.spheres[at as usize])
-                    .or_else(|| self.sphere(id as usize))
-                {
-                    Some(sphere) => drop(std::hint::black_box(sphere)),
-                    None => drop(std::hint::black_box(self.scene.shapes.get(id as usize))),
-                }
                 let y = y_start + y;
                 suspects.push((
                     k,
