@@ -190,6 +190,34 @@ pub fn render_packet_blocks<const BW: usize>(
     packet_blocks::<BW>(p, tables, width, height, progress, None).0
 }
 
+/// Traces the 4x2 packets of tile column `tx` of the strip from row `y_start` (`rows` rows) with
+/// `trace(k, (bx, by), rays, hit)`: `k` the packet's index in the tile, `(bx, by)` its first
+/// pixel (`by` within the strip), `hit` empty but for the lanes inside the image.
+#[inline(always)]
+fn tile_packets(
+    tables: &RayTables<f32>,
+    (width, height): (usize, usize),
+    (tx, y_start, rows): (usize, usize, usize),
+    mut trace: impl FnMut(usize, (usize, usize), &[f32x8; 3], &mut Hit8),
+) {
+    for by in (0..rows).step_by(BLOCK_H) {
+        for col in 0..TILE_W / BLOCK_W {
+            let bx = tx * TILE_W + col * BLOCK_W;
+            if bx >= width {
+                break;
+            }
+            let (d, active) = block_rays::<BLOCK_W>(tables, bx, y_start + by, width, height);
+            let mut hit = Hit8::new(active);
+            trace(
+                by / BLOCK_H * (TILE_W / BLOCK_W) + col,
+                (bx, by),
+                &d,
+                &mut hit,
+            );
+        }
+    }
+}
+
 /// [`render_packet_blocks`], with the f32 hits that cannot be trusted decided again in f64 when
 /// `redo` is given (`--precision auto`); also returns the re-decided pixels (row-major indices,
 /// ascending).
@@ -248,43 +276,33 @@ pub(crate) fn packet_blocks<const BW: usize>(
                 let packets = width.div_ceil(BLOCK_W) * (TILE_H / BLOCK_H);
                 let mut pending = Vec::with_capacity(if walk.is_some() { packets } else { 0 });
                 for tx in 0..width.div_ceil(TILE_W) {
-                    let tile = (tx, y_start / TILE_H);
-                    tiles.split_tile(tile, &mut lists);
-                    let carry = lists.carries();
-                    for by in (0..rows).step_by(BLOCK_H) {
-                        for col in 0..TILE_W / BLOCK_W {
-                            let bx = tx * TILE_W + col * BLOCK_W;
-                            if bx >= width {
-                                break;
-                            }
-                            let y = y_start + by;
-                            let (d, active) = block_rays::<BW>(tables, bx, y, width, height);
-                            let mut hit = Hit8::new(active);
-                            let k = by / BLOCK_H * (TILE_W / BLOCK_W) + col;
-                            match &walk {
-                                // auto: each lane carries its winner's trusted distance, in
-                                // the tiles where some packet's hits may exceed it
-                                Some((r, _)) if carry => {
-                                    let carried = tiles.trace_packet_x8_carrying(
-                                        &p.packed, &lists, k, &d, &mut hit,
-                                    );
-                                    // a lane without a hit carries +inf at +inf: never beyond
-                                    let suspect = hit.t.simd_gt(carried).to_bitmask();
-                                    if suspect != 0 {
-                                        let sphere =
-                                            |id| tiles.sphere_in_packet(&p.packed, &lists, k, id);
-                                        pending.push(r.pending(
-                                            (bx, by),
-                                            (suspect, carried),
-                                            hit.id,
-                                            sphere,
-                                        ));
-                                    }
+                    tiles.split_tile((tx, y_start / TILE_H), &mut lists);
+                    let strip = (tx, y_start, rows);
+                    match &walk {
+                        // auto: each lane carries its winner's trusted distance, in the tiles
+                        // where some packet's hits may exceed it
+                        Some((r, _)) if lists.carries() => {
+                            tile_packets(tables, (width, height), strip, |k, (bx, by), d, hit| {
+                                let carried =
+                                    tiles.trace_packet_x8_carrying(&p.packed, &lists, k, d, hit);
+                                // a lane without a hit carries +inf at +inf: never beyond
+                                let suspect = hit.t.simd_gt(carried).to_bitmask();
+                                if suspect != 0 {
+                                    let sphere =
+                                        |id| tiles.sphere_in_packet(&p.packed, &lists, k, id);
+                                    let ids = hit.id;
+                                    let p = r.pending((bx, by), (suspect, carried), ids, sphere);
+                                    pending.push(p);
                                 }
-                                _ => tiles.trace_packet_x8(&p.packed, &lists, k, &d, &mut hit),
-                            }
-                            store((ids, depth), rows, bx, by, &hit);
+                                store((ids, depth), rows, bx, by, hit);
+                            })
                         }
+                        // (a loop of its own: sharing one with the arm above cost f32 about
+                        // ten instructions a packet, 3% of its frame)
+                        _ => tile_packets(tables, (width, height), strip, |k, (bx, by), d, hit| {
+                            tiles.trace_packet_x8(&p.packed, &lists, k, d, hit);
+                            store((ids, depth), rows, bx, by, hit);
+                        }),
                     }
                 }
                 // auto: the strip's packets with lanes to check, all at once
