@@ -271,10 +271,11 @@ pub(crate) fn packet_blocks<const BW: usize>(
                 let rows = ids.len() / width;
                 let mut lists = PacketLists::default();
                 let (mut mine, walk) = (Vec::new(), walk());
-                // (sized for every packet of the strip: on 65,536 spheres most have suspects,
-                // and growing the vector cost more than allocating it whole)
-                let packets = width.div_ceil(BLOCK_W) * (TILE_H / BLOCK_H);
-                let mut pending = Vec::with_capacity(if walk.is_some() { packets } else { 0 });
+                // (sized for the few packets with suspects a strip has: about 30 on 65,536
+                // spheres; one sized for every packet, 40 KiB a strip, made the allocator
+                // return and fault in fresh pages strip after strip, doubling auto's render
+                // time on the command line)
+                let mut pending = Vec::with_capacity(if walk.is_some() { 64 } else { 0 });
                 for tx in 0..width.div_ceil(TILE_W) {
                     tiles.split_tile((tx, y_start / TILE_H), &mut lists);
                     let strip = (tx, y_start, rows);
