@@ -479,6 +479,13 @@ impl PacketLists {
     pub fn carries(&self) -> bool {
         self.carry != 0
     }
+
+    /// Whether packet `k`'s hits may lie beyond the values attached to their primitives (the
+    /// render decides per tile: per packet, the branch cost what the blends saved).
+    #[cfg(test)]
+    pub(crate) fn carries_packet(&self, k: usize) -> bool {
+        self.carry >> k & 1 != 0
+    }
 }
 
 /// Tests entry `e` against the rays `d`, keeping the nearest hits in `hit`. Polygons without

@@ -440,13 +440,13 @@ mod tests {
     use crate::render::PacketScene;
     use std::path::Path;
 
-    /// The tiles `Tiles::attach` leaves unmarked walk without carrying: checked against the
+    /// The packets `Tiles::attach` leaves unmarked walk without carrying: checked against the
     /// carrying walk, with the trusted distances auto attaches, on the stress and seed scenes,
-    /// every packet of an unmarked tile has no lane beyond its winner's trusted distance. The
-    /// marked tiles must hold some such lanes (the scenes have suspects to miss), and the
-    /// unmarked ones some hits.
+    /// every unmarked packet has no lane beyond its winner's trusted distance. The marked
+    /// packets must hold some such lanes (the scenes have suspects to miss), and the unmarked
+    /// ones some hits.
     #[test]
-    fn tiles_left_unmarked_have_no_lane_beyond_its_trusted_distance() {
+    fn packets_left_unmarked_have_no_lane_beyond_its_trusted_distance() {
         let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
         let mut paths: Vec<_> = std::fs::read_dir(root.join("stress"))
             .expect("scenes/stress")
@@ -480,13 +480,13 @@ mod tests {
                         let carried =
                             tiles.trace_packet_x8_carrying(&p.packed, &lists, k, &d, &mut hit);
                         let beyond = hit.t.simd_gt(carried).to_bitmask().count_ones();
-                        if lists.carries() {
+                        if lists.carries_packet(k) {
                             marked_beyond += beyond;
                         } else {
                             assert_eq!(
                                 beyond,
                                 0,
-                                "{}: tile ({tx}, {ty}) unmarked, packet {k}",
+                                "{}: tile ({tx}, {ty}), packet {k} unmarked",
                                 path.display()
                             );
                             unmarked_hits +=
