@@ -278,12 +278,23 @@ impl Tiles {
         k: usize,
         id: f32,
     ) -> Option<u32> {
+        self.packet_entries(lists, k)
+            .map(Entry::kind_index)
+            .find(|&(kind, i)| kind == SPHERE && p.spheres.id[i] == id)
+            .map(|(_, i)| i as u32)
+    }
+
+    /// Packet `k`'s entries, nearest first (`lists` split for its tile).
+    #[inline(always)]
+    fn packet_entries<'a>(
+        &'a self,
+        lists: &'a PacketLists,
+        k: usize,
+    ) -> impl Iterator<Item = &'a Entry> + 'a {
         let list = self.list(lists.tile.0, lists.tile.1);
         lists.index[k * lists.stride..][..lists.len[k]]
             .iter()
-            .map(|&i| list[i as usize].kind_index())
-            .find(|&(kind, i)| kind == SPHERE && p.spheres.id[i] == id)
-            .map(|(_, i)| i as u32)
+            .map(move |&i| &list[i as usize])
     }
 
     /// The walk of [`Tiles::trace_packet_x8`], carrying the winners' attached values when
@@ -299,9 +310,7 @@ impl Tiles {
         hit: &mut Hit8,
     ) -> f32x8 {
         let (mut h, mut carried) = (*hit, f32x8::splat(f32::INFINITY));
-        let list = self.list(lists.tile.0, lists.tile.1);
-        for &i in &lists.index[k * lists.stride..][..lists.len[k]] {
-            let e = &list[i as usize];
+        for e in self.packet_entries(lists, k) {
             if !h.t.simd_ge(f32x8::splat(e.near)).any() {
                 break;
             }
