@@ -103,16 +103,16 @@ fn main() {
         };
         let camera = Camera::for_scene(&scene, w, h, None).expect("bench sizes are valid");
         // Half the rounds with f32's renderer built first, half with auto's: on
-        // triangles_65536 the renderer built second ran 3-5% faster in the null test (its
-        // memory placed apart from the setup's), which favoured whichever was built second.
+        // triangles_65536 the renderer built second ran 3-5% faster in the null test, which
+        // favoured whichever was built second.
         let (mut tf, mut ta, mut redone) = (Vec::new(), Vec::new(), 0);
-        let other = if null { Method::Default } else { Method::Auto };
+        let second = if null { Method::Default } else { Method::Auto };
         for half in 0..2 {
             let (f32r, auto) = if half == 0 {
                 let f = renderer(&scene, &camera, Method::Default);
-                (f, renderer(&scene, &camera, other))
+                (f, renderer(&scene, &camera, second))
             } else {
-                let a = renderer(&scene, &camera, other);
+                let a = renderer(&scene, &camera, second);
                 (renderer(&scene, &camera, Method::Default), a)
             };
             pool.install(|| {

@@ -304,15 +304,35 @@ impl PacketCones {
         use wide::f32x8;
         let mut out = f32x8::ZERO;
         for edge in n {
-            let e = [edge[0][i], edge[1][i], edge[2][i]];
-            let along = |v: [f32; 3]| (e[0] * v[0] + e[1] * v[1] + e[2] * v[2]).abs();
-            let [hx, hy] = self.half;
-            let slack = (hx * along(self.r) + hy * along(self.u) + self.tol) * (1.0 + 1e-5);
-            let dot =
-                c[0] * f32x8::splat(e[0]) + c[1] * f32x8::splat(e[1]) + c[2] * f32x8::splat(e[2]);
-            out |= dot.simd_lt(f32x8::splat(-slack));
+            let (dot, slack) = self.spread(c, [edge[0][i], edge[1][i], edge[2][i]]);
+            out |= dot.simd_lt(-slack);
         }
         !out.to_bitmask() & 0xFF
+    }
+
+    /// For a unit vector `n`: `c . n` at each packet's centre point `c`, and the slack by
+    /// which `a . n` can differ from it over the packet's rectangle, `hx |n . r| + hy |n . u|`,
+    /// plus `tol`, rounded up by 1e-5 (the derivation above).
+    #[inline]
+    fn spread(&self, c: &[wide::f32x8; 3], n: [f32; 3]) -> (wide::f32x8, wide::f32x8) {
+        use wide::f32x8;
+        let along = |v: [f32; 3]| (n[0] * v[0] + n[1] * v[1] + n[2] * v[2]).abs();
+        let [hx, hy] = self.half;
+        let slack = (hx * along(self.r) + hy * along(self.u) + self.tol) * (1.0 + 1e-5);
+        let dot = c[0] * f32x8::splat(n[0]) + c[1] * f32x8::splat(n[1]) + c[2] * f32x8::splat(n[2]);
+        (dot, f32x8::splat(slack))
+    }
+
+    /// `|o x c|^2` in each lane, for the centre points `c`.
+    #[inline]
+    fn cross2(o: [f32; 3], c: &[wide::f32x8; 3]) -> wide::f32x8 {
+        let o = o.map(wide::f32x8::splat);
+        let x = [
+            o[1] * c[2] - o[2] * c[1],
+            o[2] * c[0] - o[0] * c[2],
+            o[0] * c[1] - o[1] * c[0],
+        ];
+        x[0] * x[0] + x[1] * x[1] + x[2] * x[2]
     }
 
     /// The packets (bits) of the tile with centre points `c` that sphere `i` of `s` may meet.
@@ -326,14 +346,10 @@ impl PacketCones {
         let (a, rad) = (self.far, self.rad);
         // in f32, rounded up by the margin's 1 + 1e-5 (the terms are positive)
         let rhs = (len * (rad + m * (2.0 * a + rad)) + r * (a + rad)) * (1.0 + 1e-5);
-        let o = oc.map(f32x8::splat);
-        let x = [
-            o[1] * c[2] - o[2] * c[1],
-            o[2] * c[0] - o[0] * c[2],
-            o[0] * c[1] - o[1] * c[0],
-        ];
-        let cross2 = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
-        !cross2.simd_gt(f32x8::splat(rhs * rhs)).to_bitmask() & 0xFF
+        !Self::cross2(oc, c)
+            .simd_gt(f32x8::splat(rhs * rhs))
+            .to_bitmask()
+            & 0xFF
     }
 
     /// The packets (bits) of the tile with centre points `c` where some pixel's exact ray may
@@ -367,7 +383,8 @@ impl PacketCones {
         use wide::f32x8;
         let oc = [s.ocx[i], s.ocy[i], s.ocz[i]];
         let l = oc.map(f64::from).iter().map(|v| v * v).sum::<f64>().sqrt();
-        let r = f64::from(s.r2[i]).sqrt() - 4.0 * U32 * (l + f64::from(s.r2[i]).sqrt());
+        let r = f64::from(s.r2[i]).sqrt();
+        let r = r - 4.0 * U32 * (l + r);
         let (k, t, ray) = (l * l - r * r, reach, f64::from(self.ray));
         let rho2 = l * l - ((t + k / t) / 2.0).powi(2);
         let slope = rho2.max(0.0).sqrt() * (1.0 - 1e-6) - 2.0 * ray * l;
@@ -377,13 +394,7 @@ impl PacketCones {
         }
         let slope = crate::real::f32_down(slope);
         let off = crate::real::f32_up(l * f64::from(self.rad) * (1.0 + 1e-6));
-        let o = oc.map(f32x8::splat);
-        let x = [
-            o[1] * c[2] - o[2] * c[1],
-            o[2] * c[0] - o[0] * c[2],
-            o[0] * c[1] - o[1] * c[0],
-        ];
-        let cross2 = (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) * f32x8::splat(1.0 + 1e-5);
+        let cross2 = Self::cross2(oc, c) * f32x8::splat(1.0 + 1e-5);
         let len = (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt() * f32x8::splat(1.0 - 1e-5);
         let rhs = (f32x8::splat(slope) * (len - f32x8::splat(self.rad)) - f32x8::splat(off))
             * f32x8::splat(1.0 - 1e-5);
@@ -413,12 +424,7 @@ impl PacketCones {
         if reach.is_nan() || reach <= 0.0 {
             return 0xFF;
         }
-        let n = [poly.nrm[0][i], poly.nrm[1][i], poly.nrm[2][i]];
-        let along = |v: [f32; 3]| (n[0] * v[0] + n[1] * v[1] + n[2] * v[2]).abs();
-        let [hx, hy] = self.half;
-        let slack =
-            f32x8::splat((hx * along(self.r) + hy * along(self.u) + self.tol) * (1.0 + 1e-5));
-        let dot = c[0] * f32x8::splat(n[0]) + c[1] * f32x8::splat(n[1]) + c[2] * f32x8::splat(n[2]);
+        let (dot, slack) = self.spread(c, [poly.nrm[0][i], poly.nrm[1][i], poly.nrm[2][i]]);
         let len = (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
         let far =
             f32x8::splat(poly.p[i]) * (len + f32x8::splat(self.rad)) * f32x8::splat(1.0 + 1e-5);

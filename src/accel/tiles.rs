@@ -358,6 +358,9 @@ impl Tiles {
             .into_par_iter()
             .enumerate()
             .map(|(t, list)| {
+                if list.is_empty() {
+                    return 0;
+                }
                 let c = PacketCones::centres(&tables, (t % cols, t / cols));
                 let mut marks = 0;
                 for e in list {
