@@ -6,7 +6,9 @@
 //!     cargo run --release --example frames -- SCENE f32|auto FRAMES [WIDTHxHEIGHT]
 //!
 //! It prints the wall time per frame (noisy on a shared machine; the instruction counts are
-//! not) and the number of pixels `auto` re-decided in the last frame.
+//! not), the number of pixels `auto` re-decided in the last frame, and what auto did on the
+//! tile path (`Renderer::auto_work`): the packets that carried the trusted distance and the
+//! hits measured.
 
 use lanecast::render::{Method, Options, Renderer};
 use lanecast::{Camera, load_scene};
@@ -51,5 +53,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         )
     });
     println!("{precision}: {ms:.3} ms per frame, {redone} pixels re-decided");
+    if let Some(w) = renderer.auto_work() {
+        println!(
+            "auto, last frame: {} of {} packets carried the trusted distance ({:.1}%), {} hits measured",
+            w.carrying,
+            w.packets,
+            100.0 * w.carrying as f64 / w.packets.max(1) as f64,
+            w.measured
+        );
+    }
     Ok(())
 }

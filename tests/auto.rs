@@ -245,3 +245,38 @@ fn auto_holds_on_tiny_far_triangles() {
     );
     holds("tiny_far_triangles", &scene, 256, 192);
 }
+
+/// `Renderer::auto_work` counts the last frame's tile path: every packet of the image walked,
+/// some carrying the trusted distance and not all, at least as many hits measured as pixels
+/// re-decided; nothing counted through the BVH, and no counts for `--precision f32`.
+#[test]
+fn auto_work_counts_the_last_frames_packets_and_measurements() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/stress/ground.sc");
+    let scene = lanecast::load_scene(&path).unwrap();
+    let (w, h) = (203, 101);
+    let camera = camera_of(&scene, w, h);
+    let renderer = |method, accel| {
+        let options = Options {
+            kernel: Kernel::Packet,
+            accel,
+            method,
+        };
+        Renderer::new(&scene, &camera, &options).unwrap()
+    };
+    let tiles = renderer(Method::Auto, Accel::Tiles);
+    for _ in 0..2 {
+        let (_, redone) = tiles.render_marking(None);
+        let work = tiles.auto_work().expect("auto counts its work");
+        let packets = (w as usize).div_ceil(4) * (h as usize).div_ceil(2);
+        assert_eq!(work.packets, packets, "every packet, once per frame");
+        assert!(work.carrying > 0 && work.carrying < packets, "{work:?}");
+        assert!(
+            work.measured >= redone.len() && work.measured > 0,
+            "{work:?}"
+        );
+    }
+    let bvh = renderer(Method::Auto, Accel::Bvh);
+    bvh.render_marking(None);
+    assert_eq!(bvh.auto_work(), Some(Default::default()));
+    assert_eq!(renderer(Method::Default, Accel::Tiles).auto_work(), None);
+}

@@ -230,6 +230,9 @@ pub(crate) fn packet_blocks<const BW: usize>(
     redo: Option<&Redecide>,
 ) -> (Frame<f32>, Vec<usize>) {
     let mut frame = Frame::new(width, height, f32::INFINITY);
+    if let Some(r) = redo {
+        r.reset_work();
+    }
     // A strip's walk of re-decisions (auto).
     let walk = || redo.map(|r| (r, r.walk(&p.packed, p.tiles.as_ref(), p.bvh.as_ref())));
     let redone = Mutex::new(Vec::new());
@@ -271,6 +274,8 @@ pub(crate) fn packet_blocks<const BW: usize>(
                 let rows = ids.len() / width;
                 let mut lists = PacketLists::default();
                 let (mut mine, walk) = (Vec::new(), walk());
+                // auto's counts for the strip (`redecide::Work`)
+                let mut work = redecide::Work::default();
                 // (sized for the few packets with suspects a strip has: about 30 on 65,536
                 // spheres; one sized for every packet, 40 KiB a strip, made the allocator
                 // return and fault in fresh pages strip after strip, doubling auto's render
@@ -283,6 +288,8 @@ pub(crate) fn packet_blocks<const BW: usize>(
                         // auto: each lane carries its winner's trusted distance, in the tiles
                         // where some packet's hits may exceed it
                         Some((r, _)) if lists.carries() => {
+                            let cols = (width - tx * TILE_W).min(TILE_W).div_ceil(BLOCK_W);
+                            work.carrying += rows.div_ceil(BLOCK_H) * cols;
                             tile_packets(tables, (width, height), strip, |k, (bx, by), d, hit| {
                                 let carried =
                                     tiles.trace_packet_x8_carrying(&p.packed, &lists, k, d, hit);
@@ -308,7 +315,10 @@ pub(crate) fn packet_blocks<const BW: usize>(
                 }
                 // auto: the strip's packets with lanes to check, all at once
                 if let Some((r, w)) = &walk {
-                    r.fix_pending(w, (y_start, width), (ids, depth), &pending, &mut mine);
+                    work.packets = width.div_ceil(BLOCK_W) * rows.div_ceil(BLOCK_H);
+                    work.measured =
+                        r.fix_pending(w, (y_start, width), (ids, depth), &pending, &mut mine);
+                    r.add_work(work);
                 }
                 note(mine);
             })

@@ -66,6 +66,7 @@ use crate::scene::{Scene, Shape};
 use crate::soa::{Packed, Records, SceneRecords};
 use rayon::prelude::*;
 use std::cell::RefCell;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use wide::f64x4;
 
 mod bounds;
@@ -93,6 +94,47 @@ pub struct Redecide<'s> {
     spheres: Vec<(glam::DVec3, f64)>,
     /// The oracle's f64 ray tables, padded to whole 4x2 blocks (`dir_x1` is the oracle's ray).
     tables: RayTables<f64>,
+    /// What the last frame's tile path did ([`Work`]): packets walked, those that carried
+    /// the trusted distance, hits measured.
+    work: [AtomicUsize; 3],
+}
+
+/// What `--precision auto` did on the tile path in a renderer's last frame
+/// (`Renderer::auto_work`): how many 4x2 packets were walked, how many of them carried each
+/// lane's trusted distance (the rest walked as `--precision f32` does), and how many hits were
+/// measured against the oracle's distance for their own primitive.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Work {
+    /// 4x2 packets walked through the tiles.
+    pub packets: usize,
+    /// Of those, the packets that carried each lane's trusted distance.
+    pub carrying: usize,
+    /// Hits beyond their trusted distance, measured against the oracle's.
+    pub measured: usize,
+}
+
+impl Redecide<'_> {
+    /// Clears the counts of [`Work`] (at the start of a frame).
+    pub(crate) fn reset_work(&self) {
+        self.work.iter().for_each(|w| w.store(0, Ordering::Relaxed));
+    }
+
+    /// Adds a strip's counts to the frame's.
+    pub(crate) fn add_work(&self, w: Work) {
+        for (a, v) in self.work.iter().zip([w.packets, w.carrying, w.measured]) {
+            a.fetch_add(v, Ordering::Relaxed);
+        }
+    }
+
+    /// The last frame's counts.
+    pub(crate) fn work(&self) -> Work {
+        let [packets, carrying, measured] = self.work.each_ref().map(|a| a.load(Ordering::Relaxed));
+        Work {
+            packets,
+            carrying,
+            measured,
+        }
+    }
 }
 
 /// The trusted distance a lane won by a primitive with limits `[lo, hi]` carries: its `hi`, or
@@ -216,6 +258,7 @@ impl<'s> Redecide<'s> {
             limits,
             safe,
             tables: camera.tables(4, 2),
+            work: Default::default(),
         }
     }
 

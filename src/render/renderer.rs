@@ -135,6 +135,17 @@ impl<'s> Renderer<'s> {
         matches!(self.job, Job::Setup(_, Some(_)))
     }
 
+    /// What `--precision auto` did on the tile path in this renderer's last frame
+    /// ([`crate::render::redecide::Work`]; all zero through the BVH or without acceleration);
+    /// `None` for other precisions. Counts of the frame rendered last, whichever thread
+    /// rendered it: two frames rendered at once on one renderer mix their counts.
+    pub fn auto_work(&self) -> Option<crate::render::redecide::Work> {
+        match &self.job {
+            Job::Setup(_, Some(r)) => Some(r.work()),
+            _ => None,
+        }
+    }
+
     /// Renders the frame in the current rayon pool. Depth is reported in f32 by every kernel
     /// (f64 distances rounded once).
     pub fn render(&self) -> Frame<f32> {

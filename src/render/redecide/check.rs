@@ -312,7 +312,7 @@ impl Redecide<'_> {
     /// measured packet by packet three of the four f64 lanes went unused. Each suspect's shape
     /// was asked for as its packet was traced ([`Redecide::pending`]), so that its cache miss
     /// (on 65,536 random primitives, most of a suspect's cost when each was read as it was
-    /// measured) overlaps the rest of the strip.
+    /// measured) overlaps the rest of the strip. Returns how many hits it measured.
     pub(crate) fn fix_pending(
         &self,
         walk: &Walk,
@@ -320,7 +320,7 @@ impl Redecide<'_> {
         (ids, depth): (&mut [i32], &mut [f32]),
         pending: &[Pending],
         mine: &mut Vec<usize>,
-    ) {
+    ) -> usize {
         // (packet, lane, hit) of every lane to measure, in packet order
         let lanes = pending
             .iter()
@@ -385,6 +385,7 @@ impl Redecide<'_> {
                 mine,
             );
         }
+        suspects.len()
     }
 }
 
