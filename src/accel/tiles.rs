@@ -266,22 +266,30 @@ impl Tiles {
         self.walk_packet::<true>(p, lists, k, d, hit)
     }
 
-    /// The index in `p`'s sphere store of the sphere with id `id` among packet `k`'s entries
+    /// The kind (0 sphere, 1 triangle, 2 quad, as [`Tiles::attach`] numbers them) and index
+    /// in `p`'s store of that kind of the primitive with id `id` among packet `k`'s entries
     /// (`lists` split for its tile), if one is: the winner of a lane the walk gave that id.
     /// Found in the packet's own list, which the walk has just read, rather than through a
-    /// table by id (a cache miss on 65,536 spheres).
+    /// table by id (a cache miss on 65,536 primitives).
     #[inline]
-    pub fn sphere_in_packet(
+    pub fn winner_in_packet(
         &self,
         p: &Packed,
         lists: &PacketLists,
         k: usize,
         id: f32,
-    ) -> Option<u32> {
+    ) -> Option<(usize, usize)> {
         self.packet_entries(lists, k)
             .map(Entry::kind_index)
-            .find(|&(kind, i)| kind == SPHERE && p.spheres.id[i] == id)
-            .map(|(_, i)| i as u32)
+            .find(|&(kind, i)| {
+                let ids = match kind {
+                    SPHERE => &p.spheres.id,
+                    TRIANGLE => &p.triangles.id,
+                    _ => &p.quads.id,
+                };
+                ids[i] == id
+            })
+            .map(|(kind, i)| (kind as usize, i))
     }
 
     /// Packet `k`'s entries, nearest first (`lists` split for its tile).
@@ -337,13 +345,16 @@ impl Tiles {
     /// up to `s`: a hit there is at most `s (1 - 2 error)(1 + error) < s`. A +inf value marks
     /// none, a value `<= 0` all the entry's packets. A tile where no packet is marked walks
     /// without carrying (`PacketLists::carries`).
+    ///
+    /// Returns the primitives marked in some tile, as `(kind, index)` in ascending order: the
+    /// only ones whose hits may lie beyond their values.
     pub fn attach(
         &mut self,
         packed: &Packed,
         camera: &crate::camera::Camera,
         error: f64,
         value: impl Fn(usize, usize) -> f32 + Sync,
-    ) {
+    ) -> Vec<(usize, usize)> {
         let tables = camera.tables::<f32>(BLOCK_W as u32, BLOCK_H as u32);
         let cones = PacketCones::new(&tables, camera.direction_error());
         let mut lists = Vec::with_capacity(self.start.len() - 1);
@@ -354,12 +365,13 @@ impl Tiles {
             rest = tail;
         }
         let cols = self.cols;
-        let carries = lists
+        let (carries, marked): (Vec<u8>, Vec<Vec<u32>>) = lists
             .into_par_iter()
             .enumerate()
             .map(|(t, list)| {
+                let mut marked = Vec::new();
                 if list.is_empty() {
-                    return 0;
+                    return (0, marked);
                 }
                 let c = PacketCones::centres(&tables, (t % cols, t / cols));
                 let mut marks = 0;
@@ -374,12 +386,26 @@ impl Tiles {
                         TRIANGLE => cones.polygon_beyond(&c, &packed.triangles, i, reach),
                         _ => cones.polygon_beyond(&c, &packed.quads, i, reach),
                     };
-                    marks |= beyond & e.packets();
+                    if beyond & e.packets() != 0 {
+                        marks |= beyond & e.packets();
+                        marked.push(e.prim);
+                    }
                 }
-                marks as u8
+                (marks as u8, marked)
             })
-            .collect();
+            .unzip();
         self.carries = carries;
+        let mut marked: Vec<u32> = marked.into_iter().flatten().collect();
+        marked.par_sort_unstable();
+        marked.dedup();
+        let kind_index = |prim| Entry::new(0.0, prim, 0).kind_index();
+        marked
+            .into_iter()
+            .map(|prim| {
+                let (kind, i) = kind_index(prim);
+                (kind as usize, i)
+            })
+            .collect()
     }
 }
 

@@ -296,10 +296,10 @@ pub(crate) fn packet_blocks<const BW: usize>(
                                 // a lane without a hit carries +inf at +inf: never beyond
                                 let suspect = hit.t.simd_gt(carried).to_bitmask();
                                 if suspect != 0 {
-                                    let sphere =
-                                        |id| tiles.sphere_in_packet(&p.packed, &lists, k, id);
+                                    let winner =
+                                        |id| tiles.winner_in_packet(&p.packed, &lists, k, id);
                                     let ids = hit.id;
-                                    let p = r.pending((bx, by), (suspect, carried), ids, sphere);
+                                    let p = r.pending((bx, by), (suspect, carried), ids, winner);
                                     pending.push(p);
                                 }
                                 store((ids, depth), rows, bx, by, hit);

@@ -43,7 +43,9 @@
 //! oracle, with every acceleration, on the stress scenes and on scenes written for each failure
 //! class. It holds ids to the stricter band of 1e-6 rad, and they pass.
 //!
-//! Cost: the bounds are solved for `t` once per primitive in setup (8 bytes per primitive).
+//! Cost: the bounds are solved for `t` once per primitive in setup (8 bytes per primitive),
+//! and the measurement's plane is computed for each polygon the tiles mark (40 bytes per packed
+//! polygon once any is marked).
 //! Through the tiles (the default) each lane carries the trusted distance of the primitive that
 //! won it, kept in the top 24 bits of the tile entry the walk already reads (`Tiles::attach`,
 //! rounded down), one blend per entry tested, so a packet's check is one compare. Only the tiles
@@ -92,6 +94,13 @@ pub struct Redecide<'s> {
     /// from the scene's shapes in file order (a cache miss per suspect on 65,536 spheres).
     sphere_at: Vec<u32>,
     spheres: Vec<(glam::DVec3, f64)>,
+    /// The measurement's constants of the polygons whose hits may pass their trusted
+    /// distances (those `Tiles::attach` marks; [`Redecide::attach_to`]), per packed triangle
+    /// and quad (empty until attached; all zeros for the others). A suspect's plane is read
+    /// from here, asked for by its packed index as its packet is traced, rather than computed
+    /// from the scene's shape: a miss on three cache lines (and often the page table) on
+    /// 65,536 triangles.
+    planes: [Vec<verify::Plane>; 2],
     /// The oracle's f64 ray tables, padded to whole 4x2 blocks (`dir_x1` is the oracle's ray).
     tables: RayTables<f64>,
     /// What the last frame's tile path did ([`Work`]): packets walked, those that carried
@@ -253,6 +262,7 @@ impl<'s> Redecide<'s> {
         Redecide {
             sphere_at,
             spheres,
+            planes: [Vec::new(), Vec::new()],
             scene,
             camera_eye: camera.eye,
             limits,
@@ -286,12 +296,37 @@ impl<'s> Redecide<'s> {
     /// with the lanes their primitive takes. Up to a trusted distance the f32 distances err by
     /// at most [`BUDGET`] against the oracle's (first order; [`TOLERANCE`] with the rest), so
     /// the tiles mark the packets that may exceed it by the exact hits their rays may have, and
-    /// the others walk without carrying.
-    pub(crate) fn attach_to(&self, tiles: &mut Tiles, packed: &Packed, camera: &Camera) {
+    /// the others walk without carrying. The marked polygons' planes are computed here, once
+    /// (`planes`).
+    pub(crate) fn attach_to(&mut self, tiles: &mut Tiles, packed: &Packed, camera: &Camera) {
         let ids = [&packed.spheres.id, &packed.triangles.id, &packed.quads.id];
-        tiles.attach(packed, camera, TOLERANCE, |kind, i| {
+        let marked = tiles.attach(packed, camera, TOLERANCE, |kind, i| {
             carry(self.limits[ids[kind][i] as usize])
         });
+        let polygons: Vec<_> = marked.into_iter().filter(|&(kind, _)| kind > 0).collect();
+        let found: Vec<_> = polygons
+            .par_iter()
+            .map(|&(kind, i)| self.plane(self.scene.shapes.get(ids[kind][i] as usize)))
+            .collect();
+        if polygons.is_empty() {
+            return;
+        }
+        self.planes = [ids[1].len(), ids[2].len()].map(|n| vec![verify::Plane::default(); n]);
+        for (&(kind, i), plane) in polygons.iter().zip(found) {
+            // (a polygon's shape is always one)
+            self.planes[kind - 1][i] = plane.unwrap_or_default();
+        }
+    }
+
+    /// Where the measurement's constants of the winner a packet's walk found, `(kind, index)`
+    /// in the packed stores, are kept.
+    #[inline(always)]
+    fn known(&self, (kind, i): (usize, usize)) -> verify::Known {
+        match kind {
+            0 => verify::Known::Sphere(i as u32),
+            _ if self.planes[kind - 1].is_empty() => verify::Known::Unknown,
+            _ => verify::Known::Polygon(kind as u8, i as u32),
+        }
     }
 
     /// The centre and radius of primitive `id` when it is a sphere.

@@ -96,7 +96,7 @@ impl<'s> Renderer<'s> {
         accel: Accel,
     ) -> Renderer<'s> {
         let mut p = PacketScene::new(scene, camera, accel);
-        let redecide = Redecide::new(scene, camera, &p.packed);
+        let mut redecide = Redecide::new(scene, camera, &p.packed);
         if let Some(tiles) = &mut p.tiles {
             redecide.attach_to(tiles, &p.packed, camera);
         }

@@ -191,16 +191,22 @@ impl Shapes {
         }
     }
 
-    /// Where primitive `id`'s data starts in memory: what [`Shapes::get`] reads first (a loose
-    /// shape, or a mesh face's vertex indices). For cache hints; nothing reads through it.
-    /// Panics when `id >= len()`.
+    /// Where primitive `id`'s data lies in memory, as a start and a length in bytes: what
+    /// [`Shapes::get`] reads first (a loose shape, or a mesh face's vertex indices). For cache
+    /// hints; nothing reads through it. Panics when `id >= len()`.
     #[inline]
-    pub fn address(&self, id: usize) -> *const u8 {
+    pub fn address(&self, id: usize) -> (*const u8, usize) {
         assert!(id < self.len, "shape id {id} of {}", self.len);
         let run = self.runs[self.run_of(id)];
         match run.src {
-            Src::Loose(at) => (&self.loose[at + id - run.first] as *const Shape).cast(),
-            Src::Mesh(k) => self.meshes[k].0.faces[id - run.first].as_ptr().cast(),
+            Src::Loose(at) => {
+                let shape = &self.loose[at + id - run.first];
+                ((shape as *const Shape).cast(), std::mem::size_of_val(shape))
+            }
+            Src::Mesh(k) => {
+                let face = &self.meshes[k].0.faces[id - run.first];
+                (face.as_ptr().cast(), std::mem::size_of_val(face))
+            }
         }
     }
 

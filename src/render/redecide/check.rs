@@ -10,7 +10,7 @@
 //!   compare, against the least trusted distance in the scene ([`Redecide::fix_strip`]), and
 //!   the packet loop is the f32 one, unchanged.
 
-use super::verify::{Oracle, Suspect};
+use super::verify::{Known, Oracle, Suspect};
 use super::{ROW_MIN, Redecide, Walk};
 use crate::kernel::packet::BLOCK_W;
 use wide::{f32x8, i32x8};
@@ -262,45 +262,48 @@ impl Redecide<'_> {
     /// lanes `suspect` (bits) lie beyond their carried distance: those beyond a finite `hi`
     /// are untrusted as they stand, those on a primitive with a `lo` must look their limits up.
     /// The packet loop finds `suspect` with one compare, and comes here for the few packets
-    /// where it is not empty. `ids` are the lanes' winners, and `sphere_of(id)` the index of
-    /// such a winner in the packed sphere store when it is a sphere, found where the packet's
-    /// data is still in cache (the tiles: `Tiles::sphere_in_packet`).
-    #[inline]
+    /// where it is not empty. `ids` are the lanes' winners, and `winner_of(id)` the kind and
+    /// packed index of such a winner, found where the packet's data is still in cache (the
+    /// tiles: `Tiles::winner_in_packet`).
+    #[inline(never)]
+    #[cold]
     pub(crate) fn pending(
         &self,
         (bx, by): (usize, usize),
         (suspect, carried): (u32, f32x8),
         ids: f32x8,
-        sphere_of: impl Fn(f32) -> Option<u32>,
+        winner_of: impl Fn(f32) -> Option<(usize, usize)>,
     ) -> Pending {
         // -inf arrives below -3.4e38 (`Tiles::attach` rounds down): the sign tells it
         let lookup = carried.simd_lt(f32x8::ZERO).to_bitmask() & suspect;
-        let (mut spheres, ids) = ([NO_SPHERE; 8], ids.to_array());
+        let (mut known, ids) = ([Known::Unknown; 8], ids.to_array());
+        // (the lanes of a packet mostly share their winner: found once)
+        let mut last = (f32::NAN, Known::Unknown);
         let mut m = suspect;
         while m != 0 {
             let lane = m.trailing_zeros() as usize;
             m &= m - 1;
-            // what the lane's measurement reads, asked for now and read once the strip is
-            // done: a cache miss a suspect on 65,536 primitives, 1.5-2% of auto's time there
-            // (README, "Precision")
-            match (!self.spheres.is_empty()).then(|| sphere_of(ids[lane])) {
-                Some(Some(at)) => {
-                    spheres[lane] = at;
-                    prefetch((&self.spheres[at as usize] as *const (glam::DVec3, f64)).cast());
-                }
-                _ => {
-                    let shape = self.scene.shapes.address(ids[lane] as usize);
-                    prefetch(shape);
-                    prefetch(shape.wrapping_add(64));
-                }
+            if ids[lane] == last.0 {
+                known[lane] = last.1;
+                continue;
             }
+            let k = winner_of(ids[lane]).map_or(Known::Unknown, |w| self.known(w));
+            (known[lane], last) = (k, (ids[lane], k));
+            // what the lane's measurement reads, asked for now and read once the strip is
+            // done: a cache miss a suspect on 65,536 primitives (README, "Precision")
+            let (start, len) = match k {
+                Known::Sphere(at) => bytes(&self.spheres[at as usize]),
+                Known::Polygon(kind, at) => bytes(&self.planes[kind as usize - 1][at as usize]),
+                Known::Unknown => self.scene.shapes.address(ids[lane] as usize),
+            };
+            prefetch_bytes(start, len);
         }
         Pending {
             bx,
             by,
             untrusted: suspect & !lookup,
             lookup,
-            spheres,
+            known,
         }
     }
 
@@ -342,19 +345,9 @@ impl Redecide<'_> {
                         continue;
                     }
                 }
-                let sphere = Some(p.spheres[lane as usize]).filter(|&s| s != NO_SPHERE);
+                let known = p.known[lane as usize];
                 let y = y_start + y;
-                suspects.push((
-                    k,
-                    lane,
-                    Suspect {
-                        x,
-                        y,
-                        id,
-                        t,
-                        sphere,
-                    },
-                ));
+                suspects.push((k, lane, Suspect { x, y, id, t, known }));
             }
         }
         // the lanes that stay untrusted once measured, still in packet order
@@ -389,6 +382,16 @@ impl Redecide<'_> {
     }
 }
 
+/// [`prefetch`] of every cache line of the `len` bytes from `start` (a 104-byte shape lies on
+/// three lines for half its offsets in a line).
+#[inline(always)]
+fn prefetch_bytes(start: *const u8, len: usize) {
+    let lines = (start as usize % 64 + len.max(1) - 1) / 64 + 1;
+    for line in 0..lines {
+        prefetch(start.wrapping_add(64 * line));
+    }
+}
+
 /// Asks the processor to bring the cache line of `p` towards the core (into L2 and closer),
 /// without waiting for it: a hint, which changes no result.
 #[inline(always)]
@@ -418,17 +421,18 @@ fn group((ids, depth): (&[i32], &[f32]), x0: usize, width: usize) -> ([f32; 4], 
 /// (`by`: the row within the strip) and its lanes as bits.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Pending {
-    pub(crate) bx: usize,
-    pub(crate) by: usize,
-    pub(crate) untrusted: u32,
-    pub(crate) lookup: u32,
-    /// Per lane, the index of its winner in the packed sphere store, where it is known to
-    /// be a sphere ([`NO_SPHERE`] elsewhere).
-    pub(crate) spheres: [u32; 8],
+    bx: usize,
+    by: usize,
+    untrusted: u32,
+    lookup: u32,
+    /// Per suspect lane, where its winner's measurement constants are kept.
+    known: [Known; 8],
 }
 
-/// [`Pending::spheres`] of a lane whose winner is not known to be a sphere.
-const NO_SPHERE: u32 = u32::MAX;
+/// The start and length in bytes of `v`, for [`prefetch_bytes`].
+fn bytes<T>(v: &T) -> (*const u8, usize) {
+    ((v as *const T).cast(), size_of_val(v))
+}
 
 #[cfg(test)]
 mod tests {
@@ -462,7 +466,7 @@ mod tests {
             let (w, h): (usize, usize) = (200, 120);
             let camera = Camera::new(&scene.camera, fov, w as u32, h as u32);
             let mut p = PacketScene::new(&scene, &camera, Accel::Tiles);
-            let r = Redecide::new(&scene, &camera, &p.packed);
+            let mut r = Redecide::new(&scene, &camera, &p.packed);
             let tiles = p.tiles.as_mut().expect("tiles");
             r.attach_to(tiles, &p.packed, &camera);
             let tables = camera.tables::<f32>(BLOCK_W as u32, BLOCK_H as u32);

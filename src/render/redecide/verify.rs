@@ -16,27 +16,44 @@ use wide::f64x4;
 #[derive(Debug, Clone, Copy)]
 pub(super) enum Oracle {
     Sphere(SphereK<f64>),
-    /// `N . f`, `N . r`, `N . u` (the oracle's unit normal against the camera's forward, right
-    /// and up vectors), and `((1 - BUDGET) p)^2`, `((1 + BUDGET) p)^2` (`p`: its plane distance).
-    Plane {
-        n: [f64; 3],
-        lo2: f64,
-        hi2: f64,
-    },
+    Plane(Plane),
 }
 
-impl Oracle {
+/// A polygon's plane as the measurement takes it: `N . f`, `N . r`, `N . u` (the oracle's unit
+/// normal against the camera's forward, right and up vectors), and `((1 - BUDGET) p)^2`,
+/// `((1 + BUDGET) p)^2` (`p`: its plane distance).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(super) struct Plane {
+    n: [f64; 3],
+    lo2: f64,
+    hi2: f64,
+}
+
+impl Plane {
     /// The measurement's constants of the polygon with unit normal `nrm` and plane distance
     /// `p`, for the basis of `tables`.
-    fn plane(nrm: [f64; 3], p: f64, tables: &crate::camera::RayTables<f64>) -> Oracle {
+    fn new(nrm: [f64; 3], p: f64, tables: &crate::camera::RayTables<f64>) -> Plane {
         let dot = |v: [f64; 3]| nrm[0] * v[0] + nrm[1] * v[1] + nrm[2] * v[2];
         let (lo, hi) = ((1.0 - BUDGET) * p, (1.0 + BUDGET) * p);
-        Oracle::Plane {
+        Plane {
             n: [dot(tables.f), dot(tables.r), dot(tables.u)],
             lo2: lo * lo,
             hi2: hi * hi,
         }
     }
+}
+
+/// Where a suspect's measurement constants are kept, when the walk found its primitive among
+/// its packet's entries ([`super::check::Pending`]): else they are looked up by id.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(super) enum Known {
+    #[default]
+    Unknown,
+    /// Index in `Redecide::spheres` (the packed sphere store's order).
+    Sphere(u32),
+    /// Kind (1 triangle, 2 quad) and packed index, in `Redecide::planes`: there unless all
+    /// zeros (a polygon `Tiles::attach` did not mark).
+    Polygon(u8, u32),
 }
 
 /// A hit to measure: its pixel `(x, y)` in the image, its primitive `id` and f32 distance `t`.
@@ -46,9 +63,8 @@ pub(super) struct Suspect {
     pub(super) y: usize,
     pub(super) id: f32,
     pub(super) t: f32,
-    /// The primitive's index in the packed sphere store, where the walk knows it to be a
-    /// sphere (the tiles: [`super::check::Pending`]); else it is looked up by `id`.
-    pub(super) sphere: Option<u32>,
+    /// Where its primitive's constants are, if the walk found them.
+    pub(super) known: Known,
 }
 
 /// Four spheres' oracle constants ([`SphereK<f64>`]), one per lane.
@@ -71,7 +87,7 @@ impl SphereLanes {
     }
 }
 
-/// Four polygons' measurement constants ([`Oracle::Plane`]), one per lane.
+/// Four polygons' measurement constants ([`Plane`]), one per lane.
 #[derive(Debug, Clone, Copy, Default)]
 struct PlaneLanes {
     n: [[f64; 4]; 3],
@@ -80,11 +96,11 @@ struct PlaneLanes {
 }
 
 impl PlaneLanes {
-    fn set(&mut self, i: usize, n: [f64; 3], lo2: f64, hi2: f64) {
-        for (a, v) in self.n.iter_mut().zip(n) {
+    fn set(&mut self, i: usize, k: &Plane) {
+        for (a, v) in self.n.iter_mut().zip(k.n) {
             a[i] = v;
         }
-        (self.lo2[i], self.hi2[i]) = (lo2, hi2);
+        (self.lo2[i], self.hi2[i]) = (k.lo2, k.hi2);
     }
 }
 
@@ -149,7 +165,7 @@ impl Redecide<'_> {
                 y,
                 id: id[i],
                 t: t[i],
-                sphere: None,
+                known: Known::Unknown,
             },
             _ => Suspect::default(),
         });
@@ -166,16 +182,24 @@ impl Redecide<'_> {
         let (mut is_sphere, mut is_plane) = (0, 0);
         for (i, h) in s.iter().enumerate().filter(|(i, _)| lanes >> i & 1 == 1) {
             let id = h.id as usize;
-            let sphere = match h.sphere {
-                Some(at) => Some(self.spheres[at as usize]),
-                None => self.sphere(id),
+            let sphere = match h.known {
+                Known::Sphere(at) => Some(self.spheres[at as usize]),
+                Known::Polygon(..) => None,
+                Known::Unknown => self.sphere(id),
+            };
+            let kept = match h.known {
+                Known::Polygon(kind, at) => Some(self.planes[kind as usize - 1][at as usize]),
+                _ => None,
             };
             if let Some((center, radius)) = sphere {
                 // a sphere's constants cost less to compute than to look up
                 spheres.set(i, &SphereK::new(center, radius, self.camera_eye));
                 is_sphere |= 1 << i;
-            } else if let Some(Oracle::Plane { n, lo2, hi2 }) = *self.oracle(walk, id) {
-                planes.set(i, n, lo2, hi2);
+            } else if let Some(k) = kept.filter(|k| k.hi2 > 0.0) {
+                planes.set(i, &k);
+                is_plane |= 1 << i;
+            } else if let Some(Oracle::Plane(k)) = *self.oracle(walk, id) {
+                planes.set(i, &k);
                 is_plane |= 1 << i;
             }
         }
@@ -217,21 +241,25 @@ impl Redecide<'_> {
     /// The oracle's constants of primitive `id`, computed.
     #[inline(never)]
     fn make_oracle(&self, id: usize) -> Option<Oracle> {
-        let eye = self.camera_eye;
         match self.scene.shapes.get(id) {
-            Shape::Sphere { center, radius } => {
-                Some(Oracle::Sphere(SphereK::new(center, radius, eye)))
-            }
-            // the plane alone: only a polygon the oracle accepts has f32 constants to hit
-            Shape::Triangle(v) => {
-                let (nrm, p) = TriangleK::triangle_plane(&v, eye);
-                Some(Oracle::plane(nrm, p, &self.tables))
-            }
-            Shape::Quad(v) => {
-                let (nrm, p) = QuadK::quad_plane(&v, eye);
-                Some(Oracle::plane(nrm, p, &self.tables))
-            }
+            Shape::Sphere { center, radius } => Some(Oracle::Sphere(SphereK::new(
+                center,
+                radius,
+                self.camera_eye,
+            ))),
+            shape => self.plane(shape).map(Oracle::Plane),
         }
+    }
+
+    /// The measurement's constants of polygon `shape` (`None` for a sphere): the oracle's
+    /// plane alone, since only a polygon the oracle accepts has f32 constants to hit.
+    pub(super) fn plane(&self, shape: Shape) -> Option<Plane> {
+        let (nrm, p) = match shape {
+            Shape::Sphere { .. } => return None,
+            Shape::Triangle(v) => TriangleK::triangle_plane(&v, self.camera_eye),
+            Shape::Quad(v) => QuadK::quad_plane(&v, self.camera_eye),
+        };
+        Some(Plane::new(nrm, p, &self.tables))
     }
 
     /// Which of the f32 hits `t` of the four pixels `x0..x0 + 4` of row `y` (past the image:
@@ -245,7 +273,7 @@ impl Redecide<'_> {
     /// `(1 - BUDGET) p |v| <= t (v . N) <= (1 + BUDGET) p |v|` for `v . N > 0`, every side
     /// positive, so squared: `((1 -+ BUDGET) p)^2 (v . v)` against `(t (v . N))^2`, with no
     /// square root either (the same test to f64 rounding, ~1e-16; `v . N` and `v . v` from the
-    /// plane's constants in the camera's basis, [`Oracle::Plane`]). Their edges are not tested
+    /// plane's constants in the camera's basis, [`Plane`]). Their edges are not tested
     /// again: an f32 edge decision differs from the oracle's only within its band (module
     /// comment, "Ids"), whatever the depth.
     #[inline(always)]
@@ -265,9 +293,9 @@ impl Redecide<'_> {
         let sy = f64x4::splat(tb.sy[y]);
         let t32 = f64x4::new(t.map(f64::from));
         match *k {
-            Some(Oracle::Plane { n, lo2, hi2 }) => {
+            Some(Oracle::Plane(k)) => {
                 let mut planes = PlaneLanes::default();
-                (0..4).for_each(|i| planes.set(i, n, lo2, hi2));
+                (0..4).for_each(|i| planes.set(i, &k));
                 plane_within(&planes, (sx, sy), t32).to_bitmask()
             }
             Some(Oracle::Sphere(k)) => {
@@ -397,6 +425,49 @@ mod tests {
         assert!(kept > 500 && refused > 500, "{kept} {refused}");
     }
 
+    /// Once attached to the tiles, a marked polygon's plane is kept, bit for bit the one the
+    /// measurement computes from the scene's shape, and a suspect found in its packet
+    /// (`Known::Polygon`) is measured with it as one looked up by id is: kept at the oracle's
+    /// distance, refused at 2 `BUDGET` beyond it. The grazing triangle is marked; the scene
+    /// has no other polygon.
+    #[test]
+    fn a_marked_polygons_kept_plane_measures_as_the_oracles() {
+        let (scene, camera) = grazing_scene();
+        let mut p = crate::render::PacketScene::new(&scene, &camera, crate::accel::Accel::Tiles);
+        let mut r = Redecide::new(&scene, &camera, &p.packed);
+        let tiles = p.tiles.as_mut().expect("tiles");
+        r.attach_to(tiles, &p.packed, &camera);
+        let at = p.packed.triangles.id.iter().position(|&id| id == 0.0);
+        let at = at.expect("the triangle, packed");
+        let kept = r.planes[0][at];
+        assert!(kept.hi2 > 0.0, "the grazing triangle is marked");
+        assert_eq!(Some(kept), r.plane(scene.shapes.get(0)));
+        let walk = r.walk(&p.packed, p.tiles.as_ref(), None);
+        let mut measured = 0;
+        for y in 0..48 {
+            for x in 0..64 {
+                let Some(t64) = oracle_t(&scene, &r, (x, y), 0) else {
+                    continue;
+                };
+                for (scale, expected) in [(1.0, 1), (1.0 + 2.0 * BUDGET, 0)] {
+                    let s = |known| Suspect {
+                        x,
+                        y,
+                        id: 0.0,
+                        t: (t64 * scale) as f32,
+                        known,
+                    };
+                    let found = [s(Known::Polygon(1, at as u32)); 4];
+                    let by_id = [s(Known::Unknown); 4];
+                    assert_eq!(r.verified_lanes(&walk, &found, 1), expected, "({x}, {y})");
+                    assert_eq!(r.verified_lanes(&walk, &by_id, 1), expected, "({x}, {y})");
+                    measured += 1;
+                }
+            }
+        }
+        assert!(measured > 1000, "{measured}");
+    }
+
     /// Suspects measured four at a time whatever their pixels, rows and primitives (as a strip's
     /// pending packets fill the lanes) get each the answer their own oracle distance gives: kept
     /// at it, refused at 2 `BUDGET` beyond it, wherever the batch puts them.
@@ -416,7 +487,7 @@ mod tests {
                             y,
                             id: id as f32,
                             t: (t64 * scale) as f32,
-                            sphere: None,
+                            known: Known::Unknown,
                         };
                         cases.push((at(1.0), true));
                         cases.push((at(1.0 + 2.0 * BUDGET), false));
