@@ -256,27 +256,25 @@ impl Redecide<'_> {
         }
     }
 
-    /// Notes in `pending` the packet at `(bx, by)` of a strip (`by`: its first row there),
-    /// traced with each lane's trusted distance carried along (`carried`: the `hi` of the
-    /// primitive that won the lane, negative where the primitive has a lower limit too;
-    /// [`super::carry`]), whose lanes `suspect` (bits) lie beyond their carried distance: those
-    /// beyond a finite `hi` are untrusted as they stand, those on a primitive with a `lo` must
-    /// look their limits up. The packet loop finds `suspect` with one compare, and calls this
-    /// for the few packets where it is not empty: out of line, and cold, so that the loop's own
-    /// code stays as it is without it (inlined, it cost auto 4-5% on 65,536 spheres in the
-    /// precision bench). `ids` are the lanes' winners, and `winner_of(id)` the kind and packed
-    /// index of such a winner, found where the packet's data is still in cache (the tiles:
-    /// `Tiles::winner_in_packet`).
+    /// The packet at `(bx, by)` of a strip (`by`: its first row there), traced with each
+    /// lane's trusted distance carried along (`carried`: the `hi` of the primitive that won the
+    /// lane, negative where the primitive has a lower limit too; [`super::carry`]), whose lanes
+    /// `suspect` (bits) lie beyond their carried distance: those beyond a finite `hi` are
+    /// untrusted as they stand, those on a primitive with a `lo` must look their limits up.
+    /// The packet loop finds `suspect` with one compare, and calls this for the few packets
+    /// where it is not empty: out of line, and cold, so that the loop's own code stays as it is
+    /// without it (inlined, it cost auto 4-5% on 65,536 spheres in the precision bench). `ids`
+    /// are the lanes' winners, and `winner_of(id)` the kind and packed index of such a winner,
+    /// found where the packet's data is still in cache (the tiles: `Tiles::winner_in_packet`).
     #[inline(never)]
     #[cold]
     pub(crate) fn pending(
         &self,
-        pending: &mut Vec<Pending>,
         (bx, by): (usize, usize),
         (suspect, carried): (u32, f32x8),
         ids: f32x8,
         winner_of: impl Fn(f32) -> Option<(usize, usize)>,
-    ) {
+    ) -> Pending {
         // -inf arrives below -3.4e38 (`Tiles::attach` rounds down): the sign tells it
         let lookup = carried.simd_lt(f32x8::ZERO).to_bitmask() & suspect;
         let (mut known, ids) = ([Known::Unknown; 8], ids.to_array());
@@ -301,13 +299,13 @@ impl Redecide<'_> {
             };
             prefetch_bytes(start, len);
         }
-        pending.push(Pending {
+        Pending {
             bx,
             by,
             untrusted: suspect & !lookup,
             lookup,
             known,
-        });
+        }
     }
 
     /// Checks the suspect lanes of a finished strip's packets (`pending`, from
