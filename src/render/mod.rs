@@ -68,6 +68,22 @@ impl<D: Copy + Send + Sync> Frame<D> {
             depth,
         }
     }
+
+    /// `spare` filled with background as [`Frame::new`] would give it, its buffers reused when
+    /// it has the size asked for (else a new frame): a caller rendering frame after frame hands
+    /// the last one back rather than freeing it. (Freed, a frame's buffers were handed back to
+    /// the system at some sizes and faulted in again on every render: 2.4 against 4.9 ms on
+    /// one thread for a 1280x720 frame, `Renderer::recycle`.)
+    pub fn reuse(spare: Option<Frame<D>>, width: usize, height: usize, background: D) -> Frame<D> {
+        match spare {
+            Some(mut f) if f.width == width && f.height == height => {
+                f.ids.par_iter_mut().for_each(|id| *id = -1);
+                f.depth.par_iter_mut().for_each(|t| *t = background);
+                f
+            }
+            _ => Frame::new(width, height, background),
+        }
+    }
 }
 
 /// What the packet kernel traces against: the SoA stores, and the BVH over them when the
@@ -187,7 +203,7 @@ pub fn render_packet_blocks<const BW: usize>(
     height: usize,
     progress: Option<&AtomicUsize>,
 ) -> Frame<f32> {
-    packet_blocks::<BW>(p, tables, width, height, progress, None).0
+    packet_blocks::<BW>(p, tables, (width, height), progress, None, None).0
 }
 
 /// Traces the 4x2 packets of tile column `tx` of the strip from row `y_start` (`rows` rows) with
@@ -219,17 +235,17 @@ fn tile_packets(
 }
 
 /// [`render_packet_blocks`], with the f32 hits that cannot be trusted decided again in f64 when
-/// `redo` is given (`--precision auto`); also returns the re-decided pixels (row-major indices,
-/// ascending).
+/// `redo` is given (`--precision auto`), into the buffers of `spare` when it has the size
+/// ([`Frame::reuse`]); also returns the re-decided pixels (row-major indices, ascending).
 pub(crate) fn packet_blocks<const BW: usize>(
     p: &PacketScene,
     tables: &RayTables<f32>,
-    width: usize,
-    height: usize,
+    (width, height): (usize, usize),
     progress: Option<&AtomicUsize>,
     redo: Option<&Redecide>,
+    spare: Option<Frame<f32>>,
 ) -> (Frame<f32>, Vec<usize>) {
-    let mut frame = Frame::new(width, height, f32::INFINITY);
+    let mut frame = Frame::reuse(spare, width, height, f32::INFINITY);
     if let Some(r) = redo {
         r.reset_work();
     }
@@ -298,7 +314,7 @@ pub(crate) fn packet_blocks<const BW: usize>(
                 // spheres; one sized for every packet, 40 KiB a strip, made the allocator
                 // return and fault in fresh pages strip after strip, doubling auto's render
                 // time on the command line)
-                let mut pending = Vec::with_capacity(64);
+                let mut pending = Vec::with_capacity(32);
                 for tx in 0..width.div_ceil(TILE_W) {
                     tiles.split_tile((tx, y_start / TILE_H), &mut lists);
                     let strip = (tx, y_start, rows);

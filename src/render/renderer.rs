@@ -7,6 +7,7 @@ use super::redecide::Redecide;
 use super::{Frame, Kernel, PacketScene, Setup, f32_depth, packet_blocks, strip_count};
 use crate::accel::Accel;
 use crate::kernel::packet::{BLOCK_H, BLOCK_W};
+use std::sync::Mutex;
 use std::sync::atomic::AtomicUsize;
 
 /// How to render: which kernel, which acceleration, which intersection method.
@@ -41,6 +42,9 @@ pub struct Renderer<'s> {
     width: usize,
     height: usize,
     job: Job<'s>,
+    /// A frame handed back by [`Renderer::recycle`], whose buffers the next packet render
+    /// fills.
+    spare: Mutex<Option<Frame<f32>>>,
 }
 
 enum Job<'s> {
@@ -85,6 +89,7 @@ impl<'s> Renderer<'s> {
             width: camera.width as usize,
             height: camera.height as usize,
             job,
+            spare: Mutex::new(None),
         })
     }
 
@@ -108,6 +113,7 @@ impl<'s> Renderer<'s> {
                 Box::new(Setup::Packet(Box::new(p), tables)),
                 Some(Box::new(redecide)),
             ),
+            spare: Mutex::new(None),
         }
     }
 
@@ -152,6 +158,13 @@ impl<'s> Renderer<'s> {
         self.render_counting(None)
     }
 
+    /// Hands a frame back once its caller is done with it: the next render with the packet
+    /// kernel fills its buffers rather than new ones, when it has this renderer's size
+    /// ([`Frame::reuse`]). For a caller that renders frame after frame (`--repeat`, benches).
+    pub fn recycle(&self, frame: Frame<f32>) {
+        *self.spare.lock().unwrap_or_else(|e| e.into_inner()) = Some(frame);
+    }
+
     /// How many units of work [`Renderer::render_counting`] counts (strips of rows).
     pub fn work_units(&self) -> usize {
         strip_count(self.height)
@@ -167,13 +180,51 @@ impl<'s> Renderer<'s> {
     /// in f64 (row-major indices, ascending; empty unless [`Renderer::redecides`]).
     pub fn render_marking(&self, progress: Option<&AtomicUsize>) -> (Frame<f32>, Vec<usize>) {
         let (w, h) = (self.width, self.height);
+        let spare = || self.spare.lock().unwrap_or_else(|e| e.into_inner()).take();
         match &self.job {
-            Job::Setup(s, Some(r)) => match s.as_ref() {
-                Setup::Packet(p, t) => packet_blocks::<BLOCK_W>(p, t, w, h, progress, Some(r)),
+            Job::Setup(s, redo) => match s.as_ref() {
+                Setup::Packet(p, t) => {
+                    let redo = redo.as_deref();
+                    packet_blocks::<BLOCK_W>(p, t, (w, h), progress, redo, spare())
+                }
                 other => (other.render_counting(w, h, progress), Vec::new()),
             },
-            Job::Setup(s, None) => (s.render_counting(w, h, progress), Vec::new()),
             Job::Method(m) => (f32_depth(m.render()), Vec::new()),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::camera::Camera;
+    use std::path::Path;
+
+    /// A frame handed back is filled as a new one would be: dirtied, recycled and rendered into,
+    /// it gives the fresh frame's ids and depths in its own buffers, with `f32` and `auto`; a
+    /// frame of another size is not used.
+    #[test]
+    fn a_recycled_frame_renders_as_a_new_one() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/scene2.sc");
+        let scene = crate::scene::load_scene(&path).expect("scene 2");
+        let camera = Camera::for_scene(&scene, 96, 64, None).expect("a camera");
+        for method in [Method::Default, Method::Auto] {
+            let options = Options {
+                method,
+                ..Options::default()
+            };
+            let r = Renderer::new(&scene, &camera, &options).expect("a renderer");
+            let fresh = r.render();
+            let mut dirty = fresh.clone();
+            dirty.ids.iter_mut().for_each(|id| *id = 7);
+            dirty.depth.iter_mut().for_each(|t| *t = 1.0);
+            let buffer = dirty.ids.as_ptr();
+            r.recycle(dirty);
+            let again = r.render();
+            assert_eq!(again, fresh, "{method:?}");
+            assert_eq!(again.ids.as_ptr(), buffer, "{method:?}: the buffers reused");
+            r.recycle(Frame::new(10, 10, 0.0));
+            assert_eq!(r.render(), fresh, "{method:?}: another size");
         }
     }
 }

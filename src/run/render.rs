@@ -110,9 +110,11 @@ pub(crate) fn render_command(s: &RenderSettings) -> Result<()> {
     let (w, h) = (s.view.width as usize, s.view.height as usize);
     let mut frame = None;
     for _ in 0..s.repeat {
-        // the last frame's buffers are freed before the next is allocated, so the allocator
-        // can hand the same memory back rather than fresh pages to fault in on every repeat
-        drop(frame.take());
+        // the last frame's buffers are handed back for the next to fill: freed, the allocator
+        // returned them to the system at some sizes, and each repeat faulted them in again
+        if let Some(f) = frame.take() {
+            renderer.recycle(f);
+        }
         let start = Instant::now();
         let (f, redone) = progress::with_progress(renderer.work_units(), |done| {
             renderer.render_marking(Some(done))
