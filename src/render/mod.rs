@@ -310,10 +310,10 @@ pub(crate) fn packet_blocks<const BW: usize>(
                 let (mut mine, (r, w)) = (Vec::new(), walk().expect("auto"));
                 // auto's counts for the strip (`redecide::Work`)
                 let mut work = redecide::Work::default();
-                // (sized for the few packets with suspects a strip has: about 30 on 65,536
-                // spheres; one sized for every packet, 40 KiB a strip, made the allocator
-                // return and fault in fresh pages strip after strip, doubling auto's render
-                // time on the command line)
+                // (sized for the few packets with suspects a strip has, about 30 on 65,536
+                // spheres, and grown where there are more; one sized for every packet, 40 KiB
+                // a strip, made the allocator return and fault in fresh pages strip after
+                // strip, doubling auto's render time on the command line)
                 let mut pending = Vec::with_capacity(32);
                 for tx in 0..width.div_ceil(TILE_W) {
                     tiles.split_tile((tx, y_start / TILE_H), &mut lists);

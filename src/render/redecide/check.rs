@@ -313,10 +313,10 @@ impl Redecide<'_> {
     /// `y_start`) and decides again in f64 each that cannot be trusted, noting its index in the
     /// image in `mine`. The strip's suspects are measured four at a time, whatever their
     /// packets and primitives ([`Redecide::verified_lanes`]): most packets have one, and
-    /// measured packet by packet three of the four f64 lanes went unused. Each suspect's shape
-    /// was asked for as its packet was traced ([`Redecide::pending`]), so that its cache miss
-    /// (on 65,536 random primitives, most of a suspect's cost when each was read as it was
-    /// measured) overlaps the rest of the strip. Returns how many hits it measured.
+    /// measured packet by packet three of the four f64 lanes went unused. Each suspect's sphere
+    /// or plane was asked for as its packet was traced ([`Redecide::pending`]), so that its
+    /// cache miss (on 65,536 random primitives, most of a suspect's cost when each was read as
+    /// it was measured) overlaps the rest of the strip. Returns how many hits it measured.
     pub(crate) fn fix_pending(
         &self,
         walk: &Walk,
