@@ -200,7 +200,7 @@ impl<'a> SceneRecords<'a> {
     pub fn new(scene: &'a Scene, packed: &'a Packed, eye: DVec3) -> SceneRecords<'a> {
         SceneRecords {
             shapes: &scene.shapes,
-            ids: [&packed.spheres.id, &packed.triangles.id, &packed.quads.id],
+            ids: packed.ids(),
             eye,
         }
     }

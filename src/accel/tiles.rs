@@ -122,6 +122,12 @@ struct Entry {
 
 const _: () = assert!(std::mem::size_of::<Entry>() == 12);
 
+/// The kind (top two bits) and index in that kind's packed store of an entry's `prim`.
+#[inline(always)]
+fn kind_index(prim: u32) -> (u32, usize) {
+    (prim >> KIND_SHIFT, (prim & INDEX_MASK) as usize)
+}
+
 /// The bits of [`Entry::word`] holding the packets.
 const PACKETS_MASK: u32 = 0xFF;
 
@@ -138,7 +144,7 @@ impl Entry {
     /// packed store.
     #[inline(always)]
     fn kind_index(&self) -> (u32, usize) {
-        (self.prim >> KIND_SHIFT, (self.prim & INDEX_MASK) as usize)
+        kind_index(self.prim)
     }
 
     /// The tile's packets the entry may reach (bits).
@@ -281,14 +287,7 @@ impl Tiles {
     ) -> Option<(usize, usize)> {
         self.packet_entries(lists, k)
             .map(Entry::kind_index)
-            .find(|&(kind, i)| {
-                let ids = match kind {
-                    SPHERE => &p.spheres.id,
-                    TRIANGLE => &p.triangles.id,
-                    _ => &p.quads.id,
-                };
-                ids[i] == id
-            })
+            .find(|&(kind, i)| p.ids()[kind as usize][i] == id)
             .map(|(kind, i)| (kind as usize, i))
     }
 
@@ -398,7 +397,6 @@ impl Tiles {
         let mut marked: Vec<u32> = marked.into_iter().flatten().collect();
         marked.par_sort_unstable();
         marked.dedup();
-        let kind_index = |prim| Entry::new(0.0, prim, 0).kind_index();
         marked
             .into_iter()
             .map(|prim| {

@@ -242,8 +242,7 @@ impl<'s> Redecide<'s> {
         }
         // the least `hi` over the scene (-inf if any primitive needs `lo`): a pixel nearer
         // needs no lookup (the strip scan: the BVH and no acceleration; tiles carry each lane's)
-        let safe = [&packed.spheres.id, &packed.triangles.id, &packed.quads.id]
-            .iter()
+        let safe = (packed.ids().into_iter())
             .flat_map(|v| v.iter())
             .map(|&id| carry(limits[id as usize]))
             .fold(f32::INFINITY, f32::min);
@@ -299,18 +298,18 @@ impl<'s> Redecide<'s> {
     /// the others walk without carrying. The marked polygons' planes are computed here, once
     /// (`planes`).
     pub(crate) fn attach_to(&mut self, tiles: &mut Tiles, packed: &Packed, camera: &Camera) {
-        let ids = [&packed.spheres.id, &packed.triangles.id, &packed.quads.id];
+        let ids = packed.ids();
         let marked = tiles.attach(packed, camera, TOLERANCE, |kind, i| {
             carry(self.limits[ids[kind][i] as usize])
         });
         let polygons: Vec<_> = marked.into_iter().filter(|&(kind, _)| kind > 0).collect();
+        if polygons.is_empty() {
+            return;
+        }
         let found: Vec<_> = polygons
             .par_iter()
             .map(|&(kind, i)| self.plane(self.scene.shapes.get(ids[kind][i] as usize)))
             .collect();
-        if polygons.is_empty() {
-            return;
-        }
         self.planes = [ids[1].len(), ids[2].len()].map(|n| vec![verify::Plane::default(); n]);
         for (&(kind, i), plane) in polygons.iter().zip(found) {
             // (a polygon's shape is always one)

@@ -221,6 +221,13 @@ pub struct Packed {
 }
 
 impl Packed {
+    /// The scene ids of each kind's primitives, in store order: spheres, triangles, quads
+    /// (the kinds numbered 0, 1, 2, as the tiles number them).
+    #[inline]
+    pub fn ids(&self) -> [&[f32]; 3] {
+        [&self.spheres.id, &self.triangles.id, &self.quads.id]
+    }
+
     /// The stores of `scene` seen from `eye`, built straight from the shapes on all threads,
     /// with no f64 copy kept: chunks of shapes are prepared in parallel (the same
     /// `SphereK::new`/`PolyK` constructors and f32 rounding as [`Prepared::new`] and

@@ -330,7 +330,7 @@ fn attached_values_are_rounded_down_and_follow_the_winner() {
     }
     // each lane's carried value is its winner's, through the packets' own lists
     let tables = camera.tables::<f32>(BLOCK_W as u32, BLOCK_H as u32);
-    let ids = [&packed.spheres.id, &packed.triangles.id, &packed.quads.id];
+    let ids = packed.ids();
     let (mut lists, mut checked) = (PacketLists::default(), 0);
     for ty in 0..48 / TILE_H {
         for tx in 0..64 / TILE_W {
@@ -484,10 +484,13 @@ fn the_winner_of_a_lane_is_found_in_its_packet() {
                     let mut hit = Hit8::new(active);
                     tiles.trace_packet_x8(&packed, &lists, k, &d, &mut hit);
                     for id in hit.id.to_array().into_iter().filter(|&id| id >= 0.0) {
-                        let stores = [&packed.spheres.id, &packed.triangles.id, &packed.quads.id];
-                        let owner = stores.iter().enumerate().find_map(|(kind, ids)| {
-                            ids.iter().position(|&s| s == id).map(|i| (kind, i))
-                        });
+                        let owner = packed
+                            .ids()
+                            .into_iter()
+                            .enumerate()
+                            .find_map(|(kind, ids)| {
+                                ids.iter().position(|&s| s == id).map(|i| (kind, i))
+                            });
                         let (kind, i) = owner.expect("a packed primitive");
                         assert_eq!(
                             tiles.winner_in_packet(&packed, &lists, k, id),

@@ -187,18 +187,21 @@ impl Redecide<'_> {
                 Known::Polygon(..) => None,
                 Known::Unknown => self.sphere(id),
             };
-            let kept = match h.known {
-                Known::Polygon(kind, at) => Some(self.planes[kind as usize - 1][at as usize]),
-                _ => None,
-            };
             if let Some((center, radius)) = sphere {
                 // a sphere's constants cost less to compute than to look up
                 spheres.set(i, &SphereK::new(center, radius, self.camera_eye));
                 is_sphere |= 1 << i;
-            } else if let Some(k) = kept.filter(|k| k.hi2 > 0.0) {
-                planes.set(i, &k);
-                is_plane |= 1 << i;
-            } else if let Some(Oracle::Plane(k)) = *self.oracle(walk, id) {
+                continue;
+            }
+            // a kept plane is all zeros for a polygon the tiles did not mark
+            let kept = match h.known {
+                Known::Polygon(kind, at) => Some(self.planes[kind as usize - 1][at as usize]),
+                _ => None,
+            };
+            if let Some(k) = kept
+                .filter(|k| k.hi2 > 0.0)
+                .or_else(|| self.oracle_plane(walk, id))
+            {
                 planes.set(i, &k);
                 is_plane |= 1 << i;
             }
@@ -236,6 +239,14 @@ impl Redecide<'_> {
             slots[slot] = (id + 1, self.make_oracle(id));
         }
         Ref::map(walk.oracles.borrow(), |v| &v[slot].1)
+    }
+
+    /// The measurement's plane of polygon `id` from the walk's cache (`None` for a sphere).
+    fn oracle_plane(&self, walk: &Walk, id: usize) -> Option<Plane> {
+        match *self.oracle(walk, id) {
+            Some(Oracle::Plane(k)) => Some(k),
+            _ => None,
+        }
     }
 
     /// The oracle's constants of primitive `id`, computed.
