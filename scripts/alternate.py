@@ -16,6 +16,7 @@ import argparse
 import json
 import os
 import subprocess
+import sys
 import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -24,7 +25,12 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 def scene_path(name):
     if os.path.exists(name):
         return name
-    return os.path.join(ROOT, "target", "scale", name + ".sc")
+    path = os.path.join(ROOT, "target", "scale", name + ".sc")
+    if not os.path.exists(path):
+        sys.exit(f"{name}: no such file, nor {path}; the scaling scenes K_N are written into "
+                 "target/scale/ by `python3 ../shared/anchors/gen_scenes.py --out target/scale` "
+                 "(../shared/anchors lies beside the checkout, not in this repository)")
+    return path
 
 
 def main():
@@ -36,6 +42,12 @@ def main():
     ap.add_argument("--repeat", type=int, default=20)
     a = ap.parse_args()
     builds = [(b.split(":")[0], b.split(":")[1] if ":" in b else None) for b in a.builds]
+    for b, _ in builds:
+        if not os.access(b, os.X_OK):
+            sys.exit(f"{b}: no such executable (build one with `cargo build --release`: "
+                     "target/release/lanecast)")
+    for sc in a.scenes:
+        scene_path(sc)  # fails early, naming a missing scene
     best = {}
     with tempfile.TemporaryDirectory() as tmp:
         stats, image = os.path.join(tmp, "s.json"), os.path.join(tmp, "x.png")

@@ -9,7 +9,9 @@ through pixel centres pass exactly (to the rounding of the decimals) through ver
 through shared edges wherever an edge joins lattice points with a common divisor > 1.
 """
 import math
+import os
 import random
+import sys
 
 W, H = 256, 192
 
@@ -376,5 +378,7 @@ def ties():
 
 
 if __name__ == "__main__":
+    if not os.path.isdir("scenes/stress"):
+        sys.exit("scenes/stress/ is missing here: run this script from the repository root")
     for g in (cube, icosphere, fan, grid, far_sphere, ground, grazing, tiny_far, translated, eye_inside, behind, ties):
         g()

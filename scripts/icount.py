@@ -21,7 +21,9 @@ Scenes named `K_N` are read from target/scale/ (written by `python3 scripts/vs_e
 """
 import argparse
 import os
+import shutil
 import subprocess
+import sys
 import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -31,7 +33,12 @@ TARGET = os.path.join(ROOT, "target", "icount")
 def scene_path(name):
     if os.path.exists(name):
         return name
-    return os.path.join(ROOT, "target", "scale", name + ".sc")
+    path = os.path.join(ROOT, "target", "scale", name + ".sc")
+    if not os.path.exists(path):
+        sys.exit(f"{name}: no such file, nor {path}; the scaling scenes K_N are written into "
+                 "target/scale/ by `python3 ../shared/anchors/gen_scenes.py --out target/scale` "
+                 "(../shared/anchors lies beside the checkout, not in this repository)")
+    return path
 
 
 def counts(scene, precision, frames, tmp, cache):
@@ -60,6 +67,11 @@ def main():
     ap.add_argument("--frames", type=int, default=3)
     ap.add_argument("--cache", action="store_true", help="also simulate a 1 MiB cache")
     a = ap.parse_args()
+    if shutil.which("valgrind") is None:
+        sys.exit("valgrind is missing: this script counts instructions with cachegrind "
+                 "(Debian: apt-get install -y valgrind)")
+    for name in a.scenes:
+        scene_path(name)  # fails early, naming a missing scene
     env = dict(os.environ, CARGO_TARGET_DIR=TARGET, RUSTFLAGS="-C target-cpu=x86-64-v3")
     subprocess.run(["cargo", "build", "--release", "--example", "frames"],
                    cwd=ROOT, env=env, check=True)

@@ -56,12 +56,20 @@ def sh(cmd, **kw):
 
 def build():
     if not SHARED.is_dir():
-        sys.exit(f"{SHARED} is missing: this comparison needs the shared Embree anchor")
+        sys.exit(f"{SHARED} is missing: this comparison needs the Embree reference caster and the "
+                 "scaling-scene generator, which live beside the checkout (../shared/anchors), "
+                 "not in this repository")
+    if shutil.which("g++") is None:
+        sys.exit("g++ is missing: the Embree reference caster is built with g++")
     dst = ROOT / "target" / "embree"
     dst.mkdir(parents=True, exist_ok=True)
     for f in ["build.sh", "embree_cast.cpp"]:
         shutil.copy(SHARED / "embree" / f, dst / f)
-    sh(["bash", str(dst / "build.sh")])
+    try:
+        sh(["bash", str(dst / "build.sh")])
+    except subprocess.CalledProcessError as e:
+        sys.exit("building the Embree reference caster failed; it needs Embree 3 "
+                 "(Debian: apt-get install -y libembree-dev):\n" + (e.stderr or "").strip()[-2000:])
     sh(["cargo", "build", "--release"], cwd=ROOT)
     SCALE.mkdir(parents=True, exist_ok=True)
     sh([sys.executable, str(SHARED / "gen_scenes.py"), "--out", str(SCALE)])
