@@ -46,19 +46,24 @@
 
 pub mod accel;
 pub mod camera;
+#[cfg(feature = "cli")]
 pub(crate) mod cli;
 pub mod compare;
 pub mod error;
 pub mod kernel;
 pub mod limits;
 pub mod output;
+pub(crate) mod par;
+#[cfg(feature = "cli")]
 pub(crate) mod progress;
 pub mod real;
 pub mod render;
+#[cfg(feature = "cli")]
 pub(crate) mod run;
 pub mod scene;
 pub mod shade;
 pub mod soa;
+#[cfg(feature = "cli")]
 pub(crate) mod stats;
 pub(crate) mod words;
 
@@ -69,9 +74,10 @@ pub use render::{Frame, Kernel, Method, Options, Renderer};
 pub use scene::{Scene, load_scene, parse_scene};
 pub use shade::{ColorMode, Variation, shade};
 
-/// Runs the lanecast command line on a full argument list (program name first). Text for
+/// Runs the lanecast command line (feature `cli`) on a full argument list (program name first). Text for
 /// stdout (help, reports) is printed here; errors are returned for `main` to print once, with
 /// [`Error::exit_code`] as the process's exit code.
+#[cfg(feature = "cli")]
 pub fn run(args: impl IntoIterator<Item = std::ffi::OsString>) -> Result<()> {
     run::command(cli::parse(args)?)
 }

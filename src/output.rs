@@ -18,8 +18,10 @@ use std::ffi::OsString;
 use std::fs::{self, File, OpenOptions};
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
+#[cfg(feature = "cli")]
+use std::sync::Once;
 use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::{Mutex, MutexGuard, Once};
+use std::sync::{Mutex, MutexGuard};
 
 use image::ExtendedColorType;
 use image::ImageEncoder;
@@ -28,7 +30,9 @@ use image::codecs::png::{CompressionType, FilterType, PngEncoder};
 
 use crate::{Error, Result};
 
+#[cfg(feature = "cli")]
 mod set;
+#[cfg(feature = "cli")]
 pub use set::{OutputKind, OutputSet};
 
 /// Image formats lanecast writes, chosen by the output file's extension.
@@ -133,11 +137,13 @@ fn unregister(list: &mut Vec<PathBuf>, tmp: &Path) {
 }
 
 /// Exit code after an interrupt (128 + SIGINT, the shell convention).
+#[cfg(feature = "cli")]
 pub const INTERRUPTED_EXIT: i32 = 130;
 
 /// Installs (once per process) the Ctrl-C / SIGTERM handler: it removes every pending temporary
 /// file, prints `lanecast: interrupted` and exits with [`INTERRUPTED_EXIT`]. Any existing
 /// target file is untouched (it is only ever replaced by a rename of a complete file).
+#[cfg(feature = "cli")]
 pub fn install_interrupt_cleanup() {
     static ONCE: Once = Once::new();
     ONCE.call_once(|| {

@@ -20,7 +20,7 @@
 
 use std::collections::HashMap;
 
-use rayon::prelude::*;
+use crate::par::prelude::*;
 
 /// The `ordered` palette, in assignment order: violet, blue, green, yellow, orange, red.
 pub const PALETTE: [[u8; 3]; 6] = [

@@ -27,9 +27,9 @@ use crate::camera::RayTables;
 use crate::kernel::packet::{BLOCK_H, BLOCK_W, block_rays, trace_x8};
 use crate::kernel::scalar::trace_x1;
 use crate::kernel::{Hit8, LANES};
+use crate::par::prelude::*;
 use crate::real::Real;
 use crate::soa::{Packed, Prepared};
-use rayon::prelude::*;
 use redecide::Redecide;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -60,9 +60,9 @@ impl<D: Copy + Send + Sync> Frame<D> {
     pub fn new(width: usize, height: usize, background: D) -> Frame<D> {
         let n = width * height;
         let mut ids = Vec::with_capacity(n);
-        ids.par_extend(rayon::iter::repeat_n(-1, n));
+        ids.par_extend(crate::par::repeat_n(-1, n));
         let mut depth = Vec::with_capacity(n);
-        depth.par_extend(rayon::iter::repeat_n(background, n));
+        depth.par_extend(crate::par::repeat_n(background, n));
         Frame {
             width,
             height,

@@ -75,9 +75,12 @@ impl Drop for TempDir {
     }
 }
 
-/// Runs the lanecast binary with `args` in the folder `cwd`.
+/// Runs the lanecast binary with `args` in the folder `cwd`. (Built with the `cli` feature
+/// only: the tests that run it require that feature in Cargo.toml, and the others compile this
+/// module without the binary.)
 pub fn run(cwd: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_lanecast"))
+    let bin = option_env!("CARGO_BIN_EXE_lanecast").expect("the binary, built with feature cli");
+    Command::new(bin)
         .args(args)
         .current_dir(cwd)
         .output()
