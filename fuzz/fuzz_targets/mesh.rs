@@ -2,7 +2,7 @@
 //! triangle it returns has finite vertices, and the degenerate count never exceeds the total.
 #![no_main]
 
-use lanecast::scene::mesh::parse_obj;
+use lanecast::experimental::scene::mesh::parse_obj;
 use libfuzzer_sys::fuzz_target;
 use std::path::Path;
 

@@ -5,7 +5,7 @@
 #![allow(dead_code)]
 
 use glam::DVec3;
-use lanecast::camera::Camera;
+use lanecast::Camera;
 use lanecast::scene::{CameraSpec, Scene, Shape, parse_scene};
 use std::fmt::Write as _;
 use std::fs;
@@ -341,7 +341,7 @@ pub fn random_quads(rng: &mut Rng, n: usize) -> Vec<Shape> {
             let p = |a: f64| c + (e1 * a.cos() + e2 * a.sin()) * r;
             [p(ang[0]), p(ang[1]), p(ang[2]), p(ang[3])]
         };
-        if lanecast::scene::validate::quad(&v).is_ok() {
+        if lanecast::experimental::scene::validate::quad(&v).is_ok() {
             out.push(Shape::Quad(v));
         }
     }
