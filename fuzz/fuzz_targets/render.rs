@@ -7,8 +7,8 @@
 use lanecast::Camera;
 use lanecast::compare::compare;
 use lanecast::experimental::render::{Kernel, Setup};
-use lanecast::scene::parse_scene;
 use lanecast::experimental::scene::validate;
+use lanecast::scene::parse_scene;
 use libfuzzer_sys::fuzz_target;
 use std::path::Path;
 
