@@ -61,8 +61,8 @@ impl<D: Copy + Send + Sync> Frame<D> {
 impl<D> Frame<D> {
     /// Writes the ids as a `height` x `width` NumPy array of little-endian i32 (`.npy`),
     /// atomically ([`output::write_npy_i32`]).
-    pub fn write_ids(&self, path: impl AsRef<Path>) -> Result<()> {
-        output::write_npy_i32(path.as_ref(), self.width, self.height, &self.ids)
+    pub fn write_ids(&self, path: &Path) -> Result<()> {
+        output::write_npy_i32(path, self.width, self.height, &self.ids)
     }
 }
 
@@ -79,12 +79,11 @@ impl Frame<f32> {
     /// ([`output::write_image`]).
     pub fn write_image(
         &self,
-        path: impl AsRef<Path>,
+        path: &Path,
         mode: ColorMode,
         variation: Variation,
         seed: u64,
     ) -> Result<()> {
-        let path = path.as_ref();
         output::image_format(path)?; // before the work of shading
         let rgb = self.rgb(mode, variation, seed);
         output::write_image(path, self.width, self.height, &rgb)
@@ -92,8 +91,8 @@ impl Frame<f32> {
 
     /// Writes the depths as a `height` x `width` NumPy array of little-endian f32 (`.npy`; +inf
     /// for background), atomically ([`output::write_npy_f32`]).
-    pub fn write_depth(&self, path: impl AsRef<Path>) -> Result<()> {
-        output::write_npy_f32(path.as_ref(), self.width, self.height, &self.depth)
+    pub fn write_depth(&self, path: &Path) -> Result<()> {
+        output::write_npy_f32(path, self.width, self.height, &self.depth)
     }
 }
 
@@ -138,7 +137,7 @@ mod tests {
         let back = image::open(&png).unwrap().to_rgb8();
         assert_eq!((back.width(), back.height()), (33, 17));
         assert_eq!(back.into_raw(), rgb);
-        let jpg = frame.write_image(dir.join("a.jpg"), ColorMode::Random, Variation::Linear, 1);
+        let jpg = frame.write_image(&dir.join("a.jpg"), ColorMode::Random, Variation::Linear, 1);
         assert!(matches!(jpg, Err(crate::Error::Usage(_))));
         let mut names: Vec<_> = fs::read_dir(&dir)
             .unwrap()

@@ -27,9 +27,9 @@
 //! assert_eq!(rgb.len(), 64 * 48 * 3);
 //! // Each file is written to a temporary file beside it, then renamed into place.
 //! let dir = std::env::temp_dir();
-//! frame.write_image(dir.join("lanecast-doc.png"), ColorMode::Random, Variation::Linear, 0)?;
-//! frame.write_ids(dir.join("lanecast-doc-ids.npy"))?; // (48, 64) little-endian i32
-//! frame.write_depth(dir.join("lanecast-doc-depth.npy"))?; // (48, 64) little-endian f32
+//! frame.write_image(&dir.join("lanecast-doc.png"), ColorMode::Random, Variation::Linear, 0)?;
+//! frame.write_ids(&dir.join("lanecast-doc-ids.npy"))?; // (48, 64) little-endian i32
+//! frame.write_depth(&dir.join("lanecast-doc-depth.npy"))?; // (48, 64) little-endian f32
 //! # for f in ["lanecast-doc.png", "lanecast-doc-ids.npy", "lanecast-doc-depth.npy"] {
 //! #     std::fs::remove_file(dir.join(f)).unwrap();
 //! # }

@@ -26,8 +26,8 @@ use std::path::Path;
 /// Reads, parses and validates a scene file, meshes included: every rule of the format
 /// (README "Scene format") and the f32 range check of `validate::f32_range`, so a scene this
 /// accepts is one the command line renders. Errors name the file, line and column.
-pub fn load_scene(path: impl AsRef<Path>) -> Result<Scene> {
-    let scene = parse::load_scene(path.as_ref())?;
+pub fn load_scene(path: &Path) -> Result<Scene> {
+    let scene = parse::load_scene(path)?;
     validate::f32_range(&scene)?;
     Ok(scene)
 }
@@ -35,16 +35,16 @@ pub fn load_scene(path: impl AsRef<Path>) -> Result<Scene> {
 /// [`load_scene`], also returning every mesh file the scene read, in the order of its `mesh`
 /// lines, each as resolved (joined to the scene's folder): with the scene file itself, every
 /// file the load read. The command line refuses an output that names any of them.
-pub fn load_scene_meshes(path: impl AsRef<Path>) -> Result<(Scene, Vec<PathBuf>)> {
-    let (scene, meshes) = parse::load_scene_meshes(path.as_ref())?;
+pub fn load_scene_meshes(path: &Path) -> Result<(Scene, Vec<PathBuf>)> {
+    let (scene, meshes) = parse::load_scene_meshes(path)?;
     validate::f32_range(&scene)?;
     Ok((scene, meshes))
 }
 
 /// [`load_scene`] for scene text in memory; `file` names the scene in messages, and `mesh`
 /// paths are relative to its folder.
-pub fn parse_scene(text: &str, file: impl AsRef<Path>) -> Result<Scene> {
-    let scene = parse::parse_scene(text, file.as_ref())?;
+pub fn parse_scene(text: &str, file: &Path) -> Result<Scene> {
+    let scene = parse::parse_scene(text, file)?;
     validate::f32_range(&scene)?;
     Ok(scene)
 }

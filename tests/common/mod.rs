@@ -10,7 +10,9 @@ use lanecast::scene::{CameraSpec, Scene, Shape, parse_scene};
 use std::fmt::Write as _;
 use std::fs;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+#[cfg(feature = "cli")]
+use std::process::Command;
+use std::process::Output;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 // ---------------------------------------------------------------------------------------------
@@ -75,12 +77,12 @@ impl Drop for TempDir {
     }
 }
 
-/// Runs the lanecast binary with `args` in the folder `cwd`. (Built with the `cli` feature
-/// only: the tests that run it require that feature in Cargo.toml, and the others compile this
-/// module without the binary.)
+/// Runs the lanecast binary with `args` in the folder `cwd`. (The binary exists with feature
+/// `cli` only: the tests that run it require it in Cargo.toml, and the others compile this
+/// module without it.)
+#[cfg(feature = "cli")]
 pub fn run(cwd: &Path, args: &[&str]) -> Output {
-    let bin = option_env!("CARGO_BIN_EXE_lanecast").expect("the binary, built with feature cli");
-    Command::new(bin)
+    Command::new(env!("CARGO_BIN_EXE_lanecast"))
         .args(args)
         .current_dir(cwd)
         .output()
