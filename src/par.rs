@@ -6,7 +6,7 @@
 //! same result at any thread count (ids and depths are bit-identical on 1 thread and on many),
 //! so a build without `parallel`, which is a 1-thread run, gives identical output.
 //!
-//! The stand-in has only what lanecast uses. Its iterators are [`Seq`], a newtype around a std
+//! The stand-in has only what lanecast uses. Its iterators are `Seq`, a newtype around a std
 //! iterator that is not itself an `Iterator`, so rayon's `reduce(identity, op)` and friends
 //! never meet std's methods of the same names.
 
