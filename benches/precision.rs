@@ -19,9 +19,9 @@
 //! `cargo bench --bench precision`; `LANECAST_BENCH_QUICK=1` for 10 rounds instead of 32;
 //! `cargo bench --bench precision -- scene7` for the cases whose name contains `scene7`.
 
-use lanecast::camera::Camera;
-use lanecast::render::{Method, Options, Renderer};
+use lanecast::Camera;
 use lanecast::scene::{Scene, load_scene};
+use lanecast::{Method, Options, Renderer};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 

@@ -5,10 +5,10 @@
 //! `LANECAST_BENCH_QUICK=1` keeps one size (640x480) and fewer samples, for a fast look.
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use lanecast::accel::Accel;
-use lanecast::camera::Camera;
-use lanecast::camera::DEFAULT_FOV;
-use lanecast::render::{Kernel, PacketScene, Setup, render_packet_blocks};
+use lanecast::Accel;
+use lanecast::Camera;
+use lanecast::DEFAULT_FOV;
+use lanecast::experimental::render::{Kernel, PacketScene, Setup, render_packet_blocks};
 use lanecast::scene::load_scene;
 use std::hint::black_box;
 use std::path::Path;

@@ -13,10 +13,10 @@
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use glam::DVec3;
-use lanecast::accel::Accel;
-use lanecast::camera::Camera;
-use lanecast::camera::DEFAULT_FOV;
-use lanecast::render::{PacketScene, render_packet};
+use lanecast::Accel;
+use lanecast::Camera;
+use lanecast::DEFAULT_FOV;
+use lanecast::experimental::render::{PacketScene, render_packet};
 use lanecast::scene::{CameraSpec, Scene, Shape, load_scene};
 use std::hint::black_box;
 use std::path::Path;

@@ -10,8 +10,8 @@
 //! tile path (`Renderer::auto_work`): the packets that carried the trusted distance and the
 //! hits measured.
 
-use lanecast::render::{Method, Options, Renderer};
 use lanecast::{Camera, load_scene};
+use lanecast::{Method, Options, Renderer};
 use std::time::Instant;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {

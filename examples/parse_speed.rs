@@ -12,9 +12,9 @@
 //! line. Prints MB/s (1 MB = 1e6 bytes of the file parsed), best of 5; the clock stops when
 //! the loader returns (freeing the result is not timed).
 
+use lanecast::experimental::scene::mesh::load_obj;
+use lanecast::experimental::scene::parse::{load_scene, parse_scene};
 use lanecast::scene::Scene;
-use lanecast::scene::mesh::load_obj;
-use lanecast::scene::parse::{load_scene, parse_scene};
 use std::fmt::Write;
 use std::path::Path;
 use std::time::Instant;

@@ -4,7 +4,8 @@
 On a shared machine, wall-clock ratios of two renderers move by several percent between runs;
 instruction counts do not. This script builds `examples/frames.rs` for AVX2
 (`-C target-cpu=x86-64-v3`, into target/icount: valgrind 3.19 decodes no AVX-512, and the
-lanes are f32x8 either way), runs it under `valgrind --tool=cachegrind` for 1 and for
+lanes are f32x8 either way) in the `profiling` profile (the release build with line tables,
+so `cg_annotate` can name source lines), runs it under `valgrind --tool=cachegrind` for 1 and for
 FRAMES + 1 frames of each scene and precision (packet kernel, automatic acceleration, one
 thread, 1280x720), and prints the difference per frame: the render alone, without setup.
 Instructions are not time: memory stalls and latency do not show. The speed target is taken
@@ -44,7 +45,7 @@ def scene_path(name):
 def counts(scene, precision, frames, tmp, cache):
     """Instructions and (with `cache`) last-level read misses of the whole run."""
     out = os.path.join(tmp, "cg.out")
-    exe = os.path.join(TARGET, "release", "examples", "frames")
+    exe = os.path.join(TARGET, "profiling", "examples", "frames")
     sim = ["--cache-sim=yes", "--LL=1048576,8,64"] if cache else ["--cache-sim=no"]
     subprocess.run(
         ["valgrind", "--tool=cachegrind", *sim, f"--cachegrind-out-file={out}",
@@ -73,7 +74,7 @@ def main():
     for name in a.scenes:
         scene_path(name)  # fails early, naming a missing scene
     env = dict(os.environ, CARGO_TARGET_DIR=TARGET, RUSTFLAGS="-C target-cpu=x86-64-v3")
-    subprocess.run(["cargo", "build", "--release", "--example", "frames"],
+    subprocess.run(["cargo", "build", "--profile", "profiling", "--example", "frames"],
                    cwd=ROOT, env=env, check=True)
     head = "| scene | f32 M instr / frame | auto M instr / frame | auto over f32 |"
     rule = "|---|---:|---:|---:|"

@@ -226,10 +226,11 @@ pub const OUTLINE_HALF: usize = 4;
 
 impl Report {
     /// The (x, y) of the unexcused pixels in a `width`-wide image, row by row.
-    pub fn unexcused_pixels(&self, width: usize) -> impl Iterator<Item = (usize, usize)> + '_ {
+    pub fn unexcused_pixels(&self, width: u32) -> impl Iterator<Item = (u32, u32)> + '_ {
+        let width = width as usize;
         (self.class.iter().enumerate())
             .filter(|&(_, &c)| c == UNEXCUSED)
-            .map(move |(i, _)| (i % width, i / width))
+            .map(move |(i, _)| ((i % width) as u32, (i / width) as u32))
     }
 }
 
@@ -241,7 +242,7 @@ pub const REDECIDED_COLOUR: [u8; 3] = [255, 0, 255];
 /// other re-decided pixel in [`REDECIDED_COLOUR`], and a red square outline [`OUTLINE_HALF`]
 /// pixels out around each unexcused pixel (clipped at the border).
 pub fn diff_picture(report: &Report, oracle: &Frame<f64>) -> Vec<u8> {
-    let (w, h) = (oracle.width, oracle.height);
+    let (w, h) = (oracle.width as usize, oracle.height as usize);
     let mut redecided = vec![false; w * h];
     for &i in &report.redecided {
         redecided[i] = true;
@@ -250,7 +251,8 @@ pub fn diff_picture(report: &Report, oracle: &Frame<f64>) -> Vec<u8> {
         class_colour(report.class[i]).or(redecided[i].then_some(REDECIDED_COLOUR))
     });
     let red = class_colour(UNEXCUSED).expect("unexcused has a colour");
-    for (x, y) in report.unexcused_pixels(w) {
+    for (x, y) in report.unexcused_pixels(oracle.width) {
+        let (x, y) = (x as usize, y as usize);
         let (x0, y0) = (
             x.saturating_sub(OUTLINE_HALF),
             y.saturating_sub(OUTLINE_HALF),

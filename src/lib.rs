@@ -2,9 +2,9 @@
 //! spheres, triangles and quads, tested 8 rays at a time in `wide::f32x8` lanes against
 //! structure-of-arrays primitives, with a plain scalar f64 path as the oracle.
 //!
-//! This library is the one way in, for the `lanecast` command line and for Rust callers alike:
-//! load a scene, make a camera, prepare a [`Renderer`], render a [`Frame`] of ids and depths,
-//! shade it to RGB.
+//! This library is the engine of the `lanecast` command line, for Rust callers too: load a
+//! [`Scene`], make a [`Camera`], prepare a [`Renderer`], render a [`Frame`] of ids and depths,
+//! then shade it to RGB or write it out.
 //!
 //! ```
 //! use lanecast::{Camera, ColorMode, Options, Renderer, Variation};
@@ -18,60 +18,114 @@
 //! assert!(scene.warnings.is_empty());
 //! let camera = Camera::for_scene(&scene, 64, 48, None)?; // the scene's fov
 //! let renderer = Renderer::new(&scene, &camera, &Options::default())?;
-//! let frame = renderer.render(); // in the current rayon pool
+//! let frame = renderer.render();
 //! let centre = 24 * 64 + 32;
 //! assert_eq!(frame.ids[centre], 0); // the sphere, id 0
 //! assert!(frame.depth[centre] > 6.0 && frame.depth[centre] < 8.0);
 //! assert_eq!(frame.ids[0], -1); // top-left: background
-//! let rgb = lanecast::shade(&frame.ids, &frame.depth, 64, ColorMode::Ordered, Variation::Linear, 0);
+//! let rgb = frame.rgb(ColorMode::Ordered, Variation::Linear, 0);
 //! assert_eq!(rgb.len(), 64 * 48 * 3);
+//! // Each file is written to a temporary file beside it, then renamed into place.
+//! let dir = std::env::temp_dir();
+//! frame.write_image(&dir.join("lanecast-doc.png"), ColorMode::Random, Variation::Linear, 0)?;
+//! frame.write_ids(&dir.join("lanecast-doc-ids.npy"))?; // (48, 64) little-endian i32
+//! frame.write_depth(&dir.join("lanecast-doc-depth.npy"))?; // (48, 64) little-endian f32
+//! # for f in ["lanecast-doc.png", "lanecast-doc-ids.npy", "lanecast-doc-depth.npy"] {
+//! #     std::fs::remove_file(dir.join(f)).unwrap();
+//! # }
 //! # Ok::<(), lanecast::Error>(())
 //! ```
 //!
-//! Threads: rendering and shading use the rayon pool they are called in; wrap the calls in
-//! `rayon::ThreadPool::install` to choose the thread count. Output is bit-identical at any
-//! thread count.
+//! # What is here
 //!
-//! Build flags: the packet kernel is one AVX register per `f32x8` only when `wide` is compiled
-//! with AVX enabled. lanecast's own `.cargo/config.toml` sets `target-cpu=native`, but that file
-//! does not apply to a crate that depends on lanecast: set `RUSTFLAGS="-C target-cpu=native"`
-//! (or a `[build] rustflags` entry in your own `.cargo/config.toml`) to get the AVX2 path.
+//! - Scenes: [`load_scene`] (a `.sc` file, meshes included) and [`parse_scene`] (text), giving
+//!   a [`Scene`]; its parts ([`scene::Shape`], [`scene::CameraSpec`], ...) are in [`scene`].
+//! - The camera: [`Camera::for_scene`] for an image size, with [`DEFAULT_FOV`] when neither the
+//!   caller nor the scene gives a field of view.
+//! - Rendering: [`Renderer::new`] with [`Options`] ([`Kernel`], [`Accel`], [`Method`]) prepares
+//!   a scene for a camera; [`Renderer::render`] gives a [`Frame`].
+//! - Shading: [`shade`] (or [`Frame::rgb`]) by [`ColorMode`] and [`Variation`].
+//! - Output files, each written atomically: [`Frame::write_image`] (PNG or BMP by extension),
+//!   [`Frame::write_ids`] and [`Frame::write_depth`] (NumPy `.npy`), and the functions of
+//!   [`output`] they call.
+//! - Errors: one [`Error`] type (with [`Error::exit_code`], the command line's) and
+//!   [`Result`]; bad input names its file, line and column.
+//! - [`limits`]: every resource limit enforced; [`compare`]: the packet kernel against the
+//!   f64 oracle, pixel by pixel (`lanecast compare`).
 //!
-//! Modules, lowest layer first (lower layers never import higher ones): [`scene`] (parse,
-//! validate, meshes) -> [`camera`], [`soa`] -> [`kernel`] (default kernels and the other
-//! intersection methods) -> [`accel`] -> [`render`] -> [`shade`](mod@shade), [`output`] -> [`compare`] ->
-//! the command line (private). [`error`], [`limits`] and [`real`] are shared by all.
+//! Image sizes are `u32` throughout. The engine's inner layers (kernels, primitive stores,
+//! acceleration structures, the other intersection methods) are opened under
+//! [`experimental`], for the accuracy lab, the benches and the tests, with no stability
+//! promise.
+//!
+//! # Features
+//!
+//! - `cli` (default): the `lanecast` binary and `lanecast::run`, with clap, ctrlc and
+//!   serde_json. Implies `parallel`.
+//! - `parallel` (default): scene loading, setup, rendering and shading spread over the current
+//!   rayon pool; wrap the calls in `rayon::ThreadPool::install` to choose the thread count.
+//!   Without it everything runs on the calling thread, and no thread is ever started.
+//!
+//! Output is bit-identical at any thread count, and with or without `parallel`.
+//! `default-features = false` gives the engine alone (glam, image for PNG and BMP, wide), for
+//! a target without threads too.
+//!
+//! # Build flags
+//!
+//! The packet kernel is one AVX register per `f32x8` only when `wide` is compiled with AVX
+//! enabled. lanecast's own `.cargo/config.toml` sets `target-cpu=native`, but that file does not
+//! apply to a crate that depends on lanecast: set `RUSTFLAGS="-C target-cpu=native"` (or a
+//! `[build] rustflags` entry in your own `.cargo/config.toml`) to get the AVX2 path.
+//!
+//! # Inside
+//!
+//! Modules, lowest layer first (lower layers never import higher ones): `scene` (parse,
+//! validate, meshes) -> `camera`, `soa` -> `kernel` (default kernels and the other
+//! intersection methods) -> `accel` -> `render` (and `frame`) -> `shade`, `output` -> `compare`
+//! -> the command line (`cli`, `run`, `progress`, `stats`: feature `cli`). `error`, `limits`,
+//! `real` and `par` (rayon, or its sequential stand-in) are shared by all. Only [`scene`],
+//! [`output`], [`limits`] and [`compare`] are public as modules; the others are opened as
+//! they are under [`experimental`].
 
 #![warn(missing_docs)]
 
-pub mod accel;
-pub mod camera;
+pub(crate) mod accel;
+pub(crate) mod camera;
+#[cfg(feature = "cli")]
 pub(crate) mod cli;
 pub mod compare;
-pub mod error;
-pub mod kernel;
+pub(crate) mod error;
+pub mod experimental;
+pub(crate) mod frame;
+pub(crate) mod kernel;
 pub mod limits;
 pub mod output;
+pub(crate) mod par;
+#[cfg(feature = "cli")]
 pub(crate) mod progress;
-pub mod real;
-pub mod render;
+pub(crate) mod real;
+pub(crate) mod render;
+#[cfg(feature = "cli")]
 pub(crate) mod run;
 pub mod scene;
-pub mod shade;
-pub mod soa;
+pub(crate) mod shade;
+pub(crate) mod soa;
+#[cfg(feature = "cli")]
 pub(crate) mod stats;
 pub(crate) mod words;
 
 pub use accel::Accel;
-pub use camera::Camera;
+pub use camera::{Camera, DEFAULT_FOV};
 pub use error::{Error, Result};
-pub use render::{Frame, Kernel, Method, Options, Renderer};
+pub use frame::Frame;
+pub use render::{Kernel, Method, Options, Renderer};
 pub use scene::{Scene, load_scene, parse_scene};
 pub use shade::{ColorMode, Variation, shade};
 
-/// Runs the lanecast command line on a full argument list (program name first). Text for
-/// stdout (help, reports) is printed here; errors are returned for `main` to print once, with
-/// [`Error::exit_code`] as the process's exit code.
+/// Runs the lanecast command line (feature `cli`) on a full argument list (program name
+/// first). Text for stdout (help, reports) is printed here; errors are returned for `main` to
+/// print once, with [`Error::exit_code`] as the process's exit code.
+#[cfg(feature = "cli")]
 pub fn run(args: impl IntoIterator<Item = std::ffi::OsString>) -> Result<()> {
     run::command(cli::parse(args)?)
 }

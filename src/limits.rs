@@ -8,7 +8,7 @@ pub const MAX_PIXELS: u64 = 1 << 28;
 /// The image-size rules, in one place: each side 1 to [`MAX_SIDE`], at most [`MAX_PIXELS`] in
 /// all. The reason, when refused, for the caller to prefix with what it checked (`--size 0x5`,
 /// or `image size 0x5`).
-pub fn check_size(width: u64, height: u64) -> Result<(), String> {
+pub(crate) fn check_size(width: u64, height: u64) -> Result<(), String> {
     if width == 0 || height == 0 {
         return Err("width and height must be at least 1".into());
     }

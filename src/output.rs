@@ -4,22 +4,25 @@
 //! is flushed and synced, then renamed onto the target. A failed write removes the temporary
 //! file and leaves any existing target untouched; a missing folder is an error, never created.
 //!
-//! Interrupts: [`install_interrupt_cleanup`] installs a SIGINT/SIGTERM (Ctrl-C) handler that
-//! removes every temporary file created and not yet renamed, then exits with code 130. The
+//! Interrupts: the command line's `install_interrupt_cleanup` installs a SIGINT/SIGTERM
+//! (Ctrl-C) handler that removes every temporary file created and not yet renamed, then exits
+//! with code 130. The
 //! registry of pending temporary files is locked across "create + register" and across
 //! "rename + unregister", so the handler sees either a temporary file (and removes it) or a
 //! finished rename (and leaves the complete target), never a half state.
 //!
 //! The functions here write one file each. The command line writes the outputs of a run as an
-//! [`OutputSet`]: all checked and their temporary files created before any work, all renamed
+//! `OutputSet`: all checked and their temporary files created before any work, all renamed
 //! together at the end (the `set` module).
 
 use std::ffi::OsString;
 use std::fs::{self, File, OpenOptions};
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
+#[cfg(feature = "cli")]
+use std::sync::Once;
 use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::{Mutex, MutexGuard, Once};
+use std::sync::{Mutex, MutexGuard};
 
 use image::ExtendedColorType;
 use image::ImageEncoder;
@@ -28,8 +31,10 @@ use image::codecs::png::{CompressionType, FilterType, PngEncoder};
 
 use crate::{Error, Result};
 
+#[cfg(feature = "cli")]
 mod set;
-pub use set::{OutputKind, OutputSet};
+#[cfg(feature = "cli")]
+pub(crate) use set::{OutputKind, OutputSet};
 
 /// Image formats lanecast writes, chosen by the output file's extension.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -133,12 +138,14 @@ fn unregister(list: &mut Vec<PathBuf>, tmp: &Path) {
 }
 
 /// Exit code after an interrupt (128 + SIGINT, the shell convention).
-pub const INTERRUPTED_EXIT: i32 = 130;
+#[cfg(feature = "cli")]
+pub(crate) const INTERRUPTED_EXIT: i32 = 130;
 
 /// Installs (once per process) the Ctrl-C / SIGTERM handler: it removes every pending temporary
 /// file, prints `lanecast: interrupted` and exits with [`INTERRUPTED_EXIT`]. Any existing
 /// target file is untouched (it is only ever replaced by a rename of a complete file).
-pub fn install_interrupt_cleanup() {
+#[cfg(feature = "cli")]
+pub(crate) fn install_interrupt_cleanup() {
     static ONCE: Once = Once::new();
     ONCE.call_once(|| {
         let _ = ctrlc::set_handler(|| {
@@ -269,14 +276,26 @@ fn write_le<T: Copy>(w: &mut impl Write, data: &[T], le: impl Fn(T) -> [u8; 4]) 
 
 /// A complete `.npy` file for a `height` x `width` array of i32, row-major.
 /// Panics if `data.len() != width * height`.
-pub fn npy_i32(width: usize, height: usize, data: &[i32]) -> Vec<u8> {
-    npy_bytes("<i4", width, height, data, i32::to_le_bytes)
+pub fn npy_i32(width: u32, height: u32, data: &[i32]) -> Vec<u8> {
+    npy_bytes(
+        "<i4",
+        width as usize,
+        height as usize,
+        data,
+        i32::to_le_bytes,
+    )
 }
 
 /// A complete `.npy` file for a `height` x `width` array of f32, row-major.
 /// Panics if `data.len() != width * height`.
-pub fn npy_f32(width: usize, height: usize, data: &[f32]) -> Vec<u8> {
-    npy_bytes("<f4", width, height, data, f32::to_le_bytes)
+pub fn npy_f32(width: u32, height: u32, data: &[f32]) -> Vec<u8> {
+    npy_bytes(
+        "<f4",
+        width as usize,
+        height as usize,
+        data,
+        f32::to_le_bytes,
+    )
 }
 
 fn npy_bytes<T: Copy>(
@@ -326,19 +345,22 @@ fn write_npy<T: Copy>(
 }
 
 /// Writes a `height` x `width` i32 array as `.npy`, atomically.
-pub fn write_npy_i32(path: &Path, width: usize, height: usize, data: &[i32]) -> Result<()> {
-    write_npy(path, "<i4", (width, height), data, i32::to_le_bytes)
+pub fn write_npy_i32(path: &Path, width: u32, height: u32, data: &[i32]) -> Result<()> {
+    let shape = (width as usize, height as usize);
+    write_npy(path, "<i4", shape, data, i32::to_le_bytes)
 }
 
 /// Writes a `height` x `width` f32 array as `.npy`, atomically.
-pub fn write_npy_f32(path: &Path, width: usize, height: usize, data: &[f32]) -> Result<()> {
-    write_npy(path, "<f4", (width, height), data, f32::to_le_bytes)
+pub fn write_npy_f32(path: &Path, width: u32, height: u32, data: &[f32]) -> Result<()> {
+    let shape = (width as usize, height as usize);
+    write_npy(path, "<f4", shape, data, f32::to_le_bytes)
 }
 
 /// True if `a` and `b` name the same file, whether or not it exists yet: existing files are
 /// compared by identity (device and inode on Unix, so hard links and symlinks count), others by
 /// canonical parent folder plus file name.
-pub fn same_file(a: &Path, b: &Path) -> bool {
+#[cfg_attr(not(feature = "cli"), allow(dead_code))]
+pub(crate) fn same_file(a: &Path, b: &Path) -> bool {
     #[cfg(unix)]
     {
         use std::os::unix::fs::MetadataExt;

@@ -20,7 +20,7 @@
 
 use std::collections::HashMap;
 
-use rayon::prelude::*;
+use crate::par::prelude::*;
 
 /// The `ordered` palette, in assignment order: violet, blue, green, yellow, orange, red.
 pub const PALETTE: [[u8; 3]; 6] = [
@@ -91,14 +91,15 @@ impl Variation {
     }
 }
 
-/// Shades a `width`-wide image from its hit buffers; returns `3 * ids.len()` RGB bytes.
+/// Shades a `width`-wide image from its hit buffers; returns `3 * ids.len()` RGB bytes
+/// ([`Frame::rgb`](crate::Frame::rgb) shades a frame).
 ///
 /// Panics if `ids` and `depth` differ in length or `ids.len()` is not a multiple of `width`
 /// (both are programming errors: the renderer allocates them together).
 pub fn shade(
     ids: &[i32],
     depth: &[f32],
-    width: usize,
+    width: u32,
     mode: ColorMode,
     variation: Variation,
     seed: u64,
@@ -108,6 +109,7 @@ pub fn shade(
         depth.len(),
         "id and depth buffers differ in length"
     );
+    let width = width as usize;
     let mut rgb = vec![0u8; ids.len() * 3];
     if ids.is_empty() {
         return rgb;

@@ -9,10 +9,10 @@
 
 use crate::kernel::polygon::{QuadK, TriangleK};
 use crate::kernel::sphere::SphereK;
+use crate::par::prelude::*;
 use crate::real::Real;
 use crate::scene::{Scene, Shape, Shapes};
 use glam::DVec3;
-use rayon::prelude::*;
 
 /// One type's prepared primitives and their ids: in file order, or in the order an acceleration
 /// structure rearranged them to (the BVH's leaves, the tiles' screen order).

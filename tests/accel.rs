@@ -10,8 +10,10 @@ mod common;
 
 use common::*;
 use glam::DVec3;
-use lanecast::accel::Accel;
-use lanecast::render::{Frame, Kernel, Method, PacketScene, Setup, f32_depth, render_packet};
+use lanecast::Accel;
+use lanecast::experimental::render::{
+    Frame, Kernel, Method, PacketScene, Setup, f32_depth, render_packet,
+};
 use lanecast::scene::{Scene, Shape};
 
 fn same_bits(what: &str, w: u32, a: &Frame<f32>, b: &Frame<f32>) {
@@ -221,9 +223,12 @@ fn tiles_equal_brute_force_across_the_eye_plane_and_inside_a_sphere() {
 #[test]
 fn auto_picks_tiles_from_the_threshold() {
     assert_eq!(
-        Accel::Auto.resolve(lanecast::accel::AUTO_MIN - 1),
+        Accel::Auto.resolve(lanecast::experimental::accel::AUTO_MIN - 1),
         Accel::None
     );
-    assert_eq!(Accel::Auto.resolve(lanecast::accel::AUTO_MIN), Accel::Tiles);
+    assert_eq!(
+        Accel::Auto.resolve(lanecast::experimental::accel::AUTO_MIN),
+        Accel::Tiles
+    );
     assert_eq!(Accel::None.resolve(1_000_000), Accel::None);
 }

@@ -7,7 +7,7 @@ mod common;
 use common::*;
 use glam::DVec3;
 use lanecast::compare::{Report, compare};
-use lanecast::render::{Kernel, Setup};
+use lanecast::experimental::render::{Kernel, Setup};
 use lanecast::scene::{Scene, Shape};
 
 /// Bounds on the depth difference between the packet kernel and the oracle, over the pixels

@@ -12,10 +12,10 @@ mod common;
 
 use common::*;
 use glam::{DMat3, DVec3};
-use lanecast::accel::Accel;
+use lanecast::Accel;
 use lanecast::compare::{UNEXCUSED, classify_within};
-use lanecast::render::kits::Oracle;
-use lanecast::render::{Frame, Kernel, Method, Options, Renderer};
+use lanecast::experimental::render::kits::Oracle;
+use lanecast::experimental::render::{Frame, Kernel, Method, Options, Renderer};
 use lanecast::scene::{Scene, Shape};
 use std::path::Path;
 

@@ -111,11 +111,11 @@ fn ordered_colour_mode_uses_the_palette() {
     }
     // Every lit pixel is a palette colour dimmed by one factor b in [B_MIN, 1]: channels that
     // are zero in the palette colour stay zero, the others scale together (within rounding).
-    let palette = lanecast::shade::PALETTE;
+    let palette = lanecast::experimental::shade::PALETTE;
     let is_dimmed = |p: [u8; 3], c: [u8; 3]| {
         let k = (0..3).max_by_key(|&k| c[k]).unwrap();
         let b = p[k] as f64 / c[k] as f64;
-        (lanecast::shade::B_MIN - 0.01..=1.0).contains(&b)
+        (lanecast::experimental::shade::B_MIN - 0.01..=1.0).contains(&b)
             && (0..3).all(|k| (p[k] as f64 - c[k] as f64 * b).abs() <= 1.0)
     };
     for p in ordered.pixels().filter(|p| p.0 != [0, 0, 0]) {

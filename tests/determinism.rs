@@ -4,7 +4,7 @@
 mod common;
 
 use common::*;
-use lanecast::render::{Frame, Kernel, Setup};
+use lanecast::experimental::render::{Frame, Kernel, Setup};
 use lanecast::scene::Scene;
 use std::fs;
 

@@ -4,7 +4,7 @@
 mod common;
 
 use common::*;
-use lanecast::accel::Accel;
+use lanecast::Accel;
 use lanecast::compare::compare_with;
 use lanecast::scene::{Shape, load_scene};
 

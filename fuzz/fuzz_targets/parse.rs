@@ -11,16 +11,16 @@ use std::path::Path;
 fuzz_target!(|data: &[u8]| {
     let text = String::from_utf8_lossy(data);
     if let Ok(scene) = parse_scene(&text, Path::new("fuzz.sc")) {
-        assert_eq!(scene.shapes.len(), scene.lines.len());
-        for s in &scene.shapes {
+        assert_eq!(scene.shapes.len(), scene.shapes.lines().count());
+        for s in scene.shapes.iter() {
             match s {
                 Shape::Sphere { center, radius } => {
-                    assert!(center.is_finite() && radius.is_finite() && *radius > 0.0)
+                    assert!(center.is_finite() && radius.is_finite() && radius > 0.0)
                 }
                 Shape::Triangle(v) => assert!(v.iter().all(|p| p.is_finite())),
                 Shape::Quad(v) => assert!(v.iter().all(|p| p.is_finite())),
             }
         }
-        let _ = lanecast::scene::validate::f32_range(&scene);
+        let _ = lanecast::experimental::scene::validate::f32_range(&scene);
     }
 });

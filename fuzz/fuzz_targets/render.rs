@@ -4,10 +4,11 @@
 //! `compare` (a tie or within the edge band).
 #![no_main]
 
-use lanecast::camera::Camera;
+use lanecast::Camera;
 use lanecast::compare::compare;
-use lanecast::render::{Kernel, Setup};
-use lanecast::scene::{parse_scene, validate};
+use lanecast::experimental::render::{Kernel, Setup};
+use lanecast::experimental::scene::validate;
+use lanecast::scene::parse_scene;
 use libfuzzer_sys::fuzz_target;
 use std::path::Path;
 

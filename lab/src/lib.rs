@@ -1,4 +1,4 @@
-//! The accuracy lab: every intersection method (`lanecast::kernel::methods`, plus the
+//! The accuracy lab: every intersection method (`lanecast::experimental::kernel::methods`, plus the
 //! defaults) on the stress scenes (`scenes/stress/`) and the seed scenes, measured against the
 //! f64 scalar oracle, with throughput on one thread; writes a chart, a table and error images
 //! to `docs/lab/`. Run it with `cargo bench --bench lab` (see [`lab_main`]).
@@ -14,7 +14,7 @@
 pub mod measure;
 pub mod report;
 
-use lanecast::camera::Camera;
+use lanecast::Camera;
 use lanecast::scene::{Scene, load_scene};
 use lanecast::{Error, Method, Result};
 use std::path::{Path, PathBuf};

@@ -24,9 +24,9 @@ use super::LabFrame;
 use super::LabScene;
 use glam::DVec3;
 use lanecast::compare::{EDGE_BAND, TIE_REL, hit_with_slack};
-use lanecast::real::V3;
-use lanecast::render::kits::Oracle;
-use lanecast::render::method::{Method, MethodRender};
+use lanecast::experimental::real::V3;
+use lanecast::experimental::render::kits::Oracle;
+use lanecast::experimental::render::method::{Method, MethodRender};
 use lanecast::scene::Shape;
 use std::time::Instant;
 
@@ -99,13 +99,13 @@ fn time_render_here(r: &dyn MethodRender) -> (LabFrame, f64) {
         total += e;
         runs += 1;
     }
-    let rays = (frame.width * frame.height) as f64;
+    let rays = f64::from(frame.width) * f64::from(frame.height);
     (frame, rays / best.max(1e-9))
 }
 
 /// Measures `frame` (a method's render) against `oracle` on scene `s`.
 pub fn measure(s: &LabScene, method: Method, oracle: &LabFrame, frame: &LabFrame) -> Row {
-    let (w, h) = (oracle.width, oracle.height);
+    let (w, h) = (oracle.width as usize, oracle.height as usize);
     let eye = s.camera.eye;
     let t64 = s.camera.tables::<f64>(1, 1);
     let shapes = &s.scene.shapes;

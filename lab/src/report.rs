@@ -6,8 +6,8 @@ use super::LabScene;
 use super::measure::{FALSE_HIT, HOLE, Row, SceneResult};
 use lanecast::Method;
 use lanecast::compare::{class_colour, marked_render};
-use lanecast::error::{Error, Result};
 use lanecast::output;
+use lanecast::{Error, Result};
 use plotters::prelude::*;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -484,7 +484,7 @@ pub fn write_all(
         let r = &results[si];
         let row = &r.rows[mi];
         let path = out.join(format!("err-{}-{}.png", r.name, row.method.name()));
-        let (w, h) = (r.oracle.width as u32, r.oracle.height as u32);
+        let (w, h) = (r.oracle.width, r.oracle.height);
         output::write_image(&path, w, h, &error_image(&r.oracle, row))?;
     }
     // plotters 0.3.7 spins in its log-scale mesh (`LogCoord::key_points`) when every point sits

@@ -5,22 +5,22 @@
 //! 1-lane form lane by lane (masked lanes unchanged), by proptest.
 
 use glam::DVec3;
+use lanecast::Camera;
 use lanecast::Method;
-use lanecast::camera::Camera;
-use lanecast::kernel::methods::mt::{MtK, mt_x1, mt_x8};
-use lanecast::kernel::methods::plane::{PlaneK, plane_x1, plane_x8};
-use lanecast::kernel::methods::sphere_naive::{NaiveK, naive_x1, naive_x8};
-use lanecast::kernel::methods::wide64::{Hit4d, polygon_x4d, sphere_x4d};
-use lanecast::kernel::methods::woop::{WoopK, WoopRay8, woop_ray, woop_x1, woop_x8};
-use lanecast::kernel::methods::world;
-use lanecast::kernel::polygon::{QuadK, TriangleK, polygon_x1, polygon_x8};
-use lanecast::kernel::sphere::{SphereK, sphere_x1, sphere_x8};
-use lanecast::kernel::{Hit, Hit8};
-use lanecast::real::V3;
-use lanecast::render::kits::{
+use lanecast::experimental::kernel::methods::mt::{MtK, mt_x1, mt_x8};
+use lanecast::experimental::kernel::methods::plane::{PlaneK, plane_x1, plane_x8};
+use lanecast::experimental::kernel::methods::sphere_naive::{NaiveK, naive_x1, naive_x8};
+use lanecast::experimental::kernel::methods::wide64::{Hit4d, polygon_x4d, sphere_x4d};
+use lanecast::experimental::kernel::methods::woop::{WoopK, WoopRay8, woop_ray, woop_x1, woop_x8};
+use lanecast::experimental::kernel::methods::world;
+use lanecast::experimental::kernel::polygon::{QuadK, TriangleK, polygon_x1, polygon_x8};
+use lanecast::experimental::kernel::sphere::{SphereK, sphere_x1, sphere_x8};
+use lanecast::experimental::kernel::{Hit, Hit8};
+use lanecast::experimental::real::V3;
+use lanecast::experimental::render::kits::{
     EPlane, EPlaneWorld, Kit, Mt, Naive, Oracle, Plane, PolyFamily, Stable, StableWorld, Watertight,
 };
-use lanecast::render::wide64::Kit64;
+use lanecast::experimental::render::wide64::Kit64;
 use lanecast_lab::LabScene;
 use lanecast_lab::measure::{Row, accuracy, method_frame, oracle_frame};
 use proptest::prelude::*;
@@ -167,7 +167,8 @@ fn stable_far_sphere_depth_within_derived_bound() {
         else {
             unreachable!()
         };
-        let d = DVec3::from_array(t64.dir_x1(i % o.width, i / o.width));
+        let w = o.width as usize;
+        let d = DVec3::from_array(t64.dir_x1(i % w, i / w));
         let oc = center - s.camera.eye;
         let l = oc - d * oc.dot(d);
         let cos = (radius * radius - l.length_squared()).max(0.0).sqrt() / radius;
@@ -254,7 +255,9 @@ fn packet_renders_equal_scalar_renders_with_border_lanes() {
         let mut s = stress(n);
         let fov = s.scene.camera.fov_deg.unwrap_or(60.0);
         s.camera = Camera::new(&s.scene.camera, fov, 37, 11);
-        fn same<S: lanecast::render::kits::SphereFamily, P: PolyFamily>(s: &LabScene) {
+        fn same<S: lanecast::experimental::render::kits::SphereFamily, P: PolyFamily>(
+            s: &LabScene,
+        ) {
             let k = Kit::<S, P>::new(&s.scene, &s.camera);
             let (a, b) = (k.render_x8(), k.render_x1());
             assert_eq!(a.ids, b.ids);

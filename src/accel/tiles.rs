@@ -85,10 +85,10 @@ use crate::kernel::polygon::polygon_lanes_all;
 use crate::kernel::scalar::ranges_x1;
 use crate::kernel::sphere::sphere_lanes_all;
 use crate::kernel::{Hit, Hit8};
+use crate::par::prelude::*;
 use crate::real::{Real, V3};
 use crate::soa::Packed;
 use crate::soa::Records;
-use rayon::prelude::*;
 use wide::{f32x8, f64x4};
 
 /// Tile width in pixels: two packets of 4x2. Measured against 16 and 32 (README, "Acceleration"):

@@ -405,7 +405,7 @@ impl<S: SphereFamily, P: PolyFamily> Kit<S, P> {
     /// The image in 4x2 packets, on the calling thread.
     pub fn render_x8(&self) -> Frame<f64> {
         let (w, h) = (self.width, self.height);
-        let mut f = Frame::new(w, h, f64::INFINITY);
+        let mut f = Frame::new(w as u32, h as u32, f64::INFINITY);
         for by in (0..h).step_by(BH) {
             for bx in (0..w).step_by(BW) {
                 let (d, active) = block_rays::<BW>(&self.tables, bx, by, w, h);
@@ -427,7 +427,7 @@ impl<S: SphereFamily, P: PolyFamily> Kit<S, P> {
     /// The image one ray at a time (f32, same method).
     pub fn render_x1(&self) -> Frame<f64> {
         let (w, h) = (self.width, self.height);
-        let mut f = Frame::new(w, h, f64::INFINITY);
+        let mut f = Frame::new(w as u32, h as u32, f64::INFINITY);
         for y in 0..h {
             for x in 0..w {
                 let hit = self.trace_x1(self.tables.dir_x1(x, y));
@@ -471,7 +471,7 @@ impl Oracle {
     /// The image one ray at a time, on the calling thread.
     pub fn render(&self) -> Frame<f64> {
         let (w, h) = (self.width, self.height);
-        let mut f = Frame::new(w, h, f64::INFINITY);
+        let mut f = Frame::new(w as u32, h as u32, f64::INFINITY);
         for y in 0..h {
             for x in 0..w {
                 let hit = self.trace(self.tables.dir_x1(x, y));

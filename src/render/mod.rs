@@ -16,6 +16,7 @@ mod renderer;
 mod setup;
 pub mod wide64;
 
+pub use crate::frame::Frame;
 pub use method::Method;
 pub use renderer::{Options, Renderer};
 pub use setup::{Kernel, Setup, Structure, prepare_f64};
@@ -27,9 +28,9 @@ use crate::camera::RayTables;
 use crate::kernel::packet::{BLOCK_H, BLOCK_W, block_rays, trace_x8};
 use crate::kernel::scalar::trace_x1;
 use crate::kernel::{Hit8, LANES};
+use crate::par::prelude::*;
 use crate::real::Real;
 use crate::soa::{Packed, Prepared};
-use rayon::prelude::*;
 use redecide::Redecide;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -38,55 +39,6 @@ use wide::f32x8;
 /// Image rows per strip: the unit of work a thread takes. A multiple of `BLOCK_H`, and one row
 /// of `accel::tiles`' tiles.
 pub const STRIP_ROWS: usize = TILE_H;
-
-/// Per-pixel results, row 0 at the top: primitive id (-1 for background) and hit distance
-/// along the unit ray (+inf for background).
-#[derive(Debug, Clone, PartialEq)]
-pub struct Frame<D> {
-    /// Image width in pixels.
-    pub width: usize,
-    /// Image height in pixels.
-    pub height: usize,
-    /// Primitive id per pixel (-1: background), row-major, `width * height` entries.
-    pub ids: Vec<i32>,
-    /// Hit distance `t` per pixel (+inf: background), parallel to `ids`.
-    pub depth: Vec<D>,
-}
-
-impl<D: Copy + Send + Sync> Frame<D> {
-    /// A frame of background: id -1 and depth `background` everywhere. The buffers are filled
-    /// by the current rayon pool's threads, each writing (and so first touching) its own part
-    /// of the new allocation: no serial pass over the image before the render.
-    pub fn new(width: usize, height: usize, background: D) -> Frame<D> {
-        let n = width * height;
-        let mut ids = Vec::with_capacity(n);
-        ids.par_extend(rayon::iter::repeat_n(-1, n));
-        let mut depth = Vec::with_capacity(n);
-        depth.par_extend(rayon::iter::repeat_n(background, n));
-        Frame {
-            width,
-            height,
-            ids,
-            depth,
-        }
-    }
-
-    /// `spare` filled with background as [`Frame::new`] would give it, its buffers reused when
-    /// it has the size asked for (else a new frame): a caller rendering frame after frame hands
-    /// the last one back rather than freeing it. (Freed, a frame's buffers were handed back to
-    /// the system at some sizes and faulted in again on every render: 2.4 against 4.9 ms on
-    /// one thread for a 1280x720 frame, `Renderer::recycle`.)
-    pub fn reuse(spare: Option<Frame<D>>, width: usize, height: usize, background: D) -> Frame<D> {
-        match spare {
-            Some(mut f) if f.width == width && f.height == height => {
-                f.ids.par_iter_mut().for_each(|id| *id = -1);
-                f.depth.par_iter_mut().for_each(|t| *t = background);
-                f
-            }
-            _ => Frame::new(width, height, background),
-        }
-    }
-}
 
 /// What the packet kernel traces against: the SoA stores, and the BVH over them when the
 /// acceleration is `bvh` (the stores are then in the BVH's leaf order) or the tile lists when
@@ -165,7 +117,7 @@ fn for_each_strip<D: Copy + Send>(
     progress: Option<&AtomicUsize>,
     f: impl Fn(usize, &mut [i32], &mut [D]) + Sync,
 ) {
-    let strip = frame.width * STRIP_ROWS;
+    let strip = frame.width as usize * STRIP_ROWS;
     frame
         .ids
         .par_chunks_mut(strip)
@@ -247,7 +199,7 @@ pub(crate) fn packet_blocks<const BW: usize>(
     redo: Option<&Redecide>,
     spare: Option<Frame<f32>>,
 ) -> (Frame<f32>, Vec<usize>) {
-    let mut frame = Frame::reuse(spare, width, height, f32::INFINITY);
+    let mut frame = Frame::reuse(spare, width as u32, height as u32, f32::INFINITY);
     if let Some(r) = redo {
         r.reset_work();
     }
@@ -393,7 +345,7 @@ pub(crate) fn render_scalar_counting<T: Real>(
     height: usize,
     progress: Option<&AtomicUsize>,
 ) -> Frame<T> {
-    let mut frame = Frame::new(width, height, T::INFINITY);
+    let mut frame = Frame::new(width as u32, height as u32, T::INFINITY);
     for_each_strip(&mut frame, progress, |y_start, ids, depth| {
         for (i, (id, t)) in ids.iter_mut().zip(depth.iter_mut()).enumerate() {
             let (x, y) = (i % width, y_start + i / width);

@@ -90,7 +90,7 @@ impl Kit64 {
     pub fn render(&self) -> Frame<f64> {
         let (w, h) = (self.width, self.height);
         let t = &self.tables;
-        let mut f = Frame::new(w, h, f64::INFINITY);
+        let mut f = Frame::new(w as u32, h as u32, f64::INFINITY);
         for_each_strip(&mut f, None, |y_start, ids, depth| {
             let rows = ids.len() / w;
             for by in (0..rows).step_by(BH) {

@@ -61,7 +61,7 @@ pub(crate) fn compare_command(s: &CompareSettings) -> Result<()> {
         s.max_mismatch_ppm
     );
     if r.unexcused > 0 {
-        let first: Vec<String> = (r.unexcused_pixels(camera.width as usize))
+        let first: Vec<String> = (r.unexcused_pixels(camera.width))
             .take(LIST_UNEXCUSED)
             .map(|(x, y)| format!("({x}, {y})"))
             .collect();

@@ -132,7 +132,7 @@ pub(crate) fn render_command(s: &RenderSettings) -> Result<()> {
     let rgb = shade(
         &frame.ids,
         &frame.depth,
-        w,
+        s.view.width,
         s.color_mode,
         s.variation,
         s.seed,

@@ -6,7 +6,7 @@
 //! 1-based number of its first line: the newlines of every chunk are counted in parallel and
 //! prefix-summed, so line numbers in messages are the file's own.
 
-use rayon::prelude::*;
+use crate::par::prelude::*;
 use std::fs::File;
 use std::io::Read;
 use std::ops::Range;
@@ -53,7 +53,7 @@ pub struct Chunk {
 /// that a slow chunk does not leave a thread idle, from 256 KiB (below which the split costs
 /// more than it gains) to 4 MiB (chunks stay cache-sized).
 pub fn chunk_bytes(len: usize) -> usize {
-    let threads = rayon::current_num_threads().max(1);
+    let threads = crate::par::current_num_threads().max(1);
     (len / (4 * threads)).clamp(256 << 10, 4 << 20)
 }
 

@@ -26,8 +26,8 @@ use super::obj::{self, Base, Halt, ObjChunk, Stop};
 use super::shapes::Mesh;
 use crate::error::{Error, Result};
 use crate::limits::MAX_SCENE_BYTES;
+use crate::par::prelude::*;
 use glam::DVec3;
-use rayon::prelude::*;
 use std::path::Path;
 use std::sync::atomic::{AtomicUsize, Ordering};
 

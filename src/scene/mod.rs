@@ -7,14 +7,14 @@
 #[cfg(test)]
 mod chunk_tests;
 mod chunks;
-pub mod mesh;
+pub(crate) mod mesh;
 mod number;
 mod obj;
-pub mod parse;
+pub(crate) mod parse;
 mod scene_chunk;
 mod shapes;
 mod statement;
-pub mod validate;
+pub(crate) mod validate;
 
 use glam::DVec3;
 pub use shapes::{Iter, Mesh, Shapes};

@@ -44,9 +44,9 @@ use super::statement::CAMERA_SYNTAX;
 use super::{CameraSpec, Scene, mesh};
 use crate::error::{Error, Result};
 use crate::limits::{MAX_PRIMITIVES, MAX_SCENE_BYTES};
+use crate::par::prelude::*;
 use crate::words::count;
 use glam::DVec3;
-use rayon::prelude::*;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 

@@ -12,8 +12,8 @@
 //! search (usually one or two runs), and [`Iter`] walks them without searching.
 
 use super::Shape;
+use crate::par::prelude::*;
 use glam::DVec3;
-use rayon::prelude::*;
 use std::ops::Range;
 
 /// A mesh's triangles, indexed: the faces in file order (fan-triangulated), each three indices
@@ -263,7 +263,7 @@ impl Shapes {
 
     /// Primitives `ids` in consecutive pieces of `chunk` ids, in parallel: each piece's first
     /// id and its primitives.
-    pub fn par_chunks(
+    pub(crate) fn par_chunks(
         &self,
         ids: Range<usize>,
         chunk: usize,

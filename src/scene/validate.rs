@@ -255,7 +255,7 @@ pub fn camera(c: &CameraSpec) -> Result<(), String> {
 /// normalised in f64 before rounding.
 pub fn f32_range(scene: &Scene) -> Result<(), Error> {
     // Checked on all threads; `find_first` keeps "the first offending primitive" exact.
-    use rayon::prelude::*;
+    use crate::par::prelude::*;
     let eye = scene.camera.eye;
     let first = scene
         .shapes

@@ -5,9 +5,9 @@
 use super::{Group, Order, Prepared, gather};
 use crate::kernel::polygon::{PolyK, QuadK, TriangleK};
 use crate::kernel::sphere::SphereK;
+use crate::par::prelude::*;
 use crate::scene::{Scene, Shape};
 use glam::DVec3;
-use rayon::prelude::*;
 
 /// Spheres as f32 columns.
 #[derive(Debug, Clone, Default)]
@@ -238,7 +238,7 @@ impl Packed {
         // before the next is prepared, so the stores exist about once at any time, not twice.
         // The columns are allocated once, for every shape of their type (edge-on polygons,
         // left out, are rare), so they never move or grow.
-        let batch_len = CHUNK * (4 * rayon::current_num_threads()).max(16);
+        let batch_len = CHUNK * (4 * crate::par::current_num_threads()).max(16);
         let (spheres, triangles, quads) = scene.counts();
         let mut out = Packed::default();
         out.spheres.reserve(spheres);

@@ -5,12 +5,14 @@
 #![allow(dead_code)]
 
 use glam::DVec3;
-use lanecast::camera::Camera;
+use lanecast::Camera;
 use lanecast::scene::{CameraSpec, Scene, Shape, parse_scene};
 use std::fmt::Write as _;
 use std::fs;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+#[cfg(feature = "cli")]
+use std::process::Command;
+use std::process::Output;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 // ---------------------------------------------------------------------------------------------
@@ -75,7 +77,10 @@ impl Drop for TempDir {
     }
 }
 
-/// Runs the lanecast binary with `args` in the folder `cwd`.
+/// Runs the lanecast binary with `args` in the folder `cwd`. (The binary exists with feature
+/// `cli` only: the tests that run it require it in Cargo.toml, and the others compile this
+/// module without it.)
+#[cfg(feature = "cli")]
 pub fn run(cwd: &Path, args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_lanecast"))
         .args(args)
@@ -338,7 +343,7 @@ pub fn random_quads(rng: &mut Rng, n: usize) -> Vec<Shape> {
             let p = |a: f64| c + (e1 * a.cos() + e2 * a.sin()) * r;
             [p(ang[0]), p(ang[1]), p(ang[2]), p(ang[3])]
         };
-        if lanecast::scene::validate::quad(&v).is_ok() {
+        if lanecast::experimental::scene::validate::quad(&v).is_ok() {
             out.push(Shape::Quad(v));
         }
     }

@@ -8,9 +8,9 @@ use super::{
 use crate::accel::footprint::{PacketCones, SPHERE_MARGIN, Screen, near_f32, polygon_footprint};
 use crate::camera::Camera;
 use crate::kernel::packet::{BLOCK_H, BLOCK_W};
+use crate::par::prelude::*;
 use crate::scene::{Scene, Shape};
 use crate::soa::{Order, Packed};
-use rayon::prelude::*;
 use std::sync::atomic::{AtomicU32, Ordering};
 use wide::f32x8;
 

@@ -56,9 +56,9 @@
 //! f32 ray against the oracle along the f64 ray, on grazing planes and on spheres near their
 //! silhouettes, with the eye outside and inside, through cameras turned off the axes.
 
+use crate::par::prelude::*;
 use crate::real::{U32 as U, f32_down, f32_up};
 use crate::soa::Spheres;
-use rayon::prelude::*;
 use wide::f64x4;
 
 /// The guarantee of `--precision auto`: every pixel's depth is within this relative distance
