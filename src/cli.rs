@@ -437,7 +437,7 @@ fn parse_raw(raw: &[OsString]) -> Result<Command> {
                          beside; give -o IMAGE",
                     ));
                 }
-                None => view.input.with_extension("png"),
+                None => default_output(&view.input, raw)?,
             };
             let stdout_format = stdout_format(&output, r.format.as_deref())?;
             let settings = RenderSettings {
@@ -458,6 +458,26 @@ fn parse_raw(raw: &[OsString]) -> Result<Command> {
             Ok(Command::Render(settings))
         }
     }
+}
+
+/// The image path when `-o` is not given: the input's with extension `.png`, refused when that
+/// is the input itself (`-i scene.png`). The message names the input flag as typed and the
+/// default, since no `-o` was typed.
+fn default_output(input: &Path, raw: &[OsString]) -> Result<PathBuf> {
+    let output = input.with_extension("png");
+    if crate::output::same_file(&output, input) {
+        let long = raw
+            .iter()
+            .any(|a| a.to_str().is_some_and(|a| a.starts_with("--input")));
+        return Err(Error::usage(format!(
+            "{} {}: the default output {} (the input's name with extension .png) would \
+             overwrite the input scene; give -o IMAGE",
+            if long { "--input" } else { "-i" },
+            input.display(),
+            output.display()
+        )));
+    }
+    Ok(output)
 }
 
 /// The format of an image written to standard output (`-o -`, with `--format`, PNG by default),

@@ -623,6 +623,32 @@ fn single_dash_options_take_the_equals_form() {
     );
 }
 
+/// `-i scene.png` with no `-o`: the default output (the input's name with `.png`) is the input
+/// itself. The message names what the user typed and the default that caused it, not a flag
+/// that was never given.
+#[test]
+fn default_output_equal_to_input_names_the_default_not_output_flag() {
+    let dir = TempDir::new("same-default");
+    dir.write("scene.png", KNOWN);
+    for flag in ["-i", "--input"] {
+        let o = run(&dir.path, &[flag, "scene.png", "-size", "16x12"]);
+        assert_rejected(
+            &o,
+            2,
+            &[
+                &format!("{flag} scene.png"),
+                "default output scene.png",
+                "overwrite",
+                "-o IMAGE",
+            ],
+            &dir,
+            &["scene.png"],
+        );
+        assert!(!stderr(&o).contains("--output"), "{}", stderr(&o));
+        assert_eq!(fs::read_to_string(dir.join("scene.png")).unwrap(), KNOWN);
+    }
+}
+
 #[test]
 fn output_equal_to_input_is_refused_and_the_input_kept() {
     let dir = TempDir::new("same");
