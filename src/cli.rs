@@ -28,16 +28,35 @@ pub const SINGLE_DASH: [(&str, &str); 5] = [
     ("-time", "--time"),
 ];
 
-/// Rewrites every token listed in [`SINGLE_DASH`] to its long form.
+/// Rewrites every token listed in [`SINGLE_DASH`] to its long form, and the `=` form of each
+/// (`-fov=-30` to `--fov=-30`) likewise: left to clap, `-fov=-30` would read as `-f` with the
+/// value `ov=-30`.
 pub fn translate(args: impl IntoIterator<Item = OsString>) -> Vec<OsString> {
-    args.into_iter()
-        .map(
-            |a| match SINGLE_DASH.iter().find(|(short, _)| a == *short) {
-                Some((_, long)) => OsString::from(long),
-                None => a,
-            },
-        )
-        .collect()
+    args.into_iter().map(translate_one).collect()
+}
+
+fn translate_one(a: OsString) -> OsString {
+    let Some(text) = a.to_str() else {
+        return a;
+    };
+    for (short, long) in SINGLE_DASH {
+        if text == short {
+            return OsString::from(long);
+        }
+        if let Some(value) = text.strip_prefix(short).and_then(|v| v.strip_prefix('=')) {
+            return OsString::from(format!("{long}={value}"));
+        }
+    }
+    a
+}
+
+/// Whether `arg` is the single-dash option `short`, alone or in its `=` form.
+fn is_single_dash(arg: &OsString, short: &str) -> bool {
+    arg.to_str().is_some_and(|a| {
+        a == short
+            || a.strip_prefix(short)
+                .is_some_and(|rest| rest.starts_with('='))
+    })
 }
 
 const EXAMPLES: &str = "\
@@ -356,7 +375,7 @@ fn respell(msg: &str, raw: &[OsString]) -> String {
             a.to_str()
                 .is_some_and(|a| a == long || a.starts_with(&format!("{long}=")))
         });
-        if raw.iter().any(|a| a == short) && !typed_long {
+        if raw.iter().any(|a| is_single_dash(a, short)) && !typed_long {
             msg = msg.replace(long, short);
         }
     }
@@ -418,7 +437,7 @@ fn parse_raw(raw: &[OsString]) -> Result<Command> {
                          beside; give -o IMAGE",
                     ));
                 }
-                None => view.input.with_extension("png"),
+                None => default_output(&view.input, raw)?,
             };
             let stdout_format = stdout_format(&output, r.format.as_deref())?;
             let settings = RenderSettings {
@@ -439,6 +458,26 @@ fn parse_raw(raw: &[OsString]) -> Result<Command> {
             Ok(Command::Render(settings))
         }
     }
+}
+
+/// The image path when `-o` is not given: the input's with extension `.png`, refused when that
+/// is the input itself (`-i scene.png`). The message names the input flag as typed and the
+/// default, since no `-o` was typed.
+fn default_output(input: &Path, raw: &[OsString]) -> Result<PathBuf> {
+    let output = input.with_extension("png");
+    if crate::output::same_file(&output, input) {
+        let long = raw
+            .iter()
+            .any(|a| a.to_str().is_some_and(|a| a.starts_with("--input")));
+        return Err(Error::usage(format!(
+            "{} {}: the default output {} (the input's name with extension .png) would \
+             overwrite the input scene; give -o IMAGE",
+            if long { "--input" } else { "-i" },
+            input.display(),
+            output.display()
+        )));
+    }
+    Ok(output)
 }
 
 /// The format of an image written to standard output (`-o -`, with `--format`, PNG by default),

@@ -101,19 +101,61 @@ pub fn encode_image(
     height: u32,
     rgb: &[u8],
 ) -> io::Result<()> {
-    let as_io = |e: image::ImageError| match e {
-        image::ImageError::IoError(e) => e,
-        other => io::Error::other(format!("cannot encode image: {other}")),
+    let mut w = KeepError {
+        inner: w,
+        first: None,
     };
-    match format {
+    let encoded = match format {
         ImageFormat::Png => {
-            PngEncoder::new_with_quality(w, CompressionType::Fast, FilterType::Adaptive)
+            PngEncoder::new_with_quality(&mut w, CompressionType::Fast, FilterType::Adaptive)
                 .write_image(rgb, width, height, ExtendedColorType::Rgb8)
-                .map_err(as_io)
         }
-        ImageFormat::Bmp => BmpEncoder::new(w)
-            .encode(rgb, width, height, ExtendedColorType::Rgb8)
-            .map_err(as_io),
+        ImageFormat::Bmp => {
+            BmpEncoder::new(&mut w).encode(rgb, width, height, ExtendedColorType::Rgb8)
+        }
+    };
+    match (encoded, w.first) {
+        (Ok(()), _) => Ok(()),
+        // the writer's own error, kind and all (a closed pipe, a full disk)
+        (Err(_), Some(e)) => Err(e),
+        (Err(image::ImageError::IoError(e)), None) => Err(e),
+        (Err(other), None) => Err(io::Error::other(format!("cannot encode image: {other}"))),
+    }
+}
+
+/// A writer that keeps the first error its inner writer returned. The PNG encoder turns an
+/// I/O error into a new one of kind `Other` holding only its text, so the caller could no
+/// longer tell a closed pipe (`BrokenPipe`) from any other failure; the error kept here is
+/// the original.
+struct KeepError<W> {
+    inner: W,
+    first: Option<io::Error>,
+}
+
+impl<W> KeepError<W> {
+    fn keep<T>(&mut self, r: io::Result<T>) -> io::Result<T> {
+        match r {
+            // retried by `write_all`: not a failure
+            Err(e) if e.kind() == io::ErrorKind::Interrupted => Err(e),
+            Err(e) => {
+                let kind = e.kind();
+                self.first.get_or_insert(e);
+                Err(io::Error::from(kind))
+            }
+            ok => ok,
+        }
+    }
+}
+
+impl<W: Write> Write for KeepError<W> {
+    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+        let r = self.inner.write(buf);
+        self.keep(r)
+    }
+
+    fn flush(&mut self) -> io::Result<()> {
+        let r = self.inner.flush();
+        self.keep(r)
     }
 }
 
@@ -422,6 +464,42 @@ mod tests {
 
     fn test_pixels(w: u32, h: u32) -> Vec<u8> {
         (0..w * h * 3).map(|i| (i * 37 % 251) as u8).collect()
+    }
+
+    /// A writer that takes `room` bytes, then fails with `kind`.
+    struct Failing {
+        room: usize,
+        kind: io::ErrorKind,
+    }
+
+    impl Write for Failing {
+        fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+            if self.room == 0 {
+                return Err(io::Error::from(self.kind));
+            }
+            let n = buf.len().min(self.room);
+            self.room -= n;
+            Ok(n)
+        }
+
+        fn flush(&mut self) -> io::Result<()> {
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn encode_errors_keep_the_writers_error_kind() {
+        let (w, h) = (300, 200);
+        let rgb = test_pixels(w, h);
+        for format in [ImageFormat::Png, ImageFormat::Bmp] {
+            for room in [0, 10, 5000] {
+                for kind in [io::ErrorKind::BrokenPipe, io::ErrorKind::StorageFull] {
+                    let mut out = Failing { room, kind };
+                    let e = encode_image(&mut out, format, w, h, &rgb).unwrap_err();
+                    assert_eq!(e.kind(), kind, "{format:?} after {room} bytes");
+                }
+            }
+        }
     }
 
     #[test]

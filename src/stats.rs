@@ -19,6 +19,10 @@ pub struct Stats {
     /// Primitives by type: spheres, triangles, quads.
     pub primitives: (usize, usize, usize),
     pub kernel: &'static str,
+    /// The precision that ran, as `--precision` names it: `auto`, `f32` or `f64`.
+    pub precision: &'static str,
+    /// The method that ran, as `--method` names it (`eplane+stable` for the default method in
+    /// any precision but f64, whose packets are the `f64x4` method).
     pub method: &'static str,
     pub accel: &'static str,
     pub threads: usize,
@@ -54,18 +58,6 @@ impl Stats {
     /// Primary rays per second of the best render.
     pub fn rays_per_s(&self) -> f64 {
         (self.width * self.height) as f64 / self.render_best().max(1e-12)
-    }
-
-    /// The precision the kernel that ran computes in: `f64` for the oracle and the f64x4
-    /// method, `auto` for f32 packets with f64 re-decisions, else `f32`.
-    pub fn precision(&self) -> &'static str {
-        if self.kernel == "scalar" || self.method == "f64x4" {
-            "f64"
-        } else if self.redecided.is_some() {
-            "auto"
-        } else {
-            "f32"
-        }
     }
 
     /// The fraction of the image's pixels re-decided in f64 (`None` unless `auto` ran).
@@ -105,8 +97,9 @@ impl Stats {
         );
         let _ = writeln!(
             out,
-            "  kernel {}, method {}, accel {}, {}, {}",
+            "  kernel {}, precision {}, method {}, accel {}, {}, {}",
             self.kernel,
+            self.precision,
             self.method,
             self.accel,
             count(self.threads, "thread", "threads"),
@@ -166,13 +159,13 @@ impl Stats {
             "height": self.height,
             "primitives": {"spheres": spheres, "triangles": triangles, "quads": quads},
             "kernel": self.kernel,
+            "precision": self.precision,
             "method": self.method,
             "accel": self.accel,
             "threads": self.threads,
             "seed": self.seed,
             "outputs": outputs,
             "simd": simd_in_use(),
-            "precision": self.precision(),
             "lanes": self.lanes(),
             "redecided_pixels": self.redecided,
             "redecided_fraction": self.redecided_fraction(),
@@ -232,6 +225,7 @@ mod tests {
             height: 10,
             primitives: (1, 2, 3),
             kernel: "simd",
+            precision: "f32",
             method: "eplane+stable",
             accel: "bvh",
             threads: 2,
@@ -249,30 +243,39 @@ mod tests {
             "{}",
             s.text()
         );
+        assert!(
+            s.text()
+                .contains("kernel simd, precision f32, method eplane+stable, accel bvh,"),
+            "{}",
+            s.text()
+        );
         s.threads = 1;
         s.kernel = "scalar";
+        s.precision = "f64";
         assert!(
             s.text().contains(", 1 thread, f64, one ray at a time"),
             "{}",
             s.text()
         );
-        assert_eq!(s.precision(), "f64");
         s.kernel = "scalar-f32";
-        assert_eq!(
-            (s.precision(), s.lanes().as_str()),
-            ("f32", "f32, one ray at a time")
-        );
+        assert_eq!(s.lanes(), "f32, one ray at a time");
         s.kernel = "simd";
         s.method = "f64x4";
-        assert_eq!(s.precision(), "f64");
         assert!(s.lanes().starts_with("f64 in f64x4 lanes"));
         let j: serde_json::Value = serde_json::from_str(&s.json()).unwrap();
-        assert_eq!(j["precision"], "f64");
+        assert_eq!(
+            (j["precision"].as_str(), j["method"].as_str()),
+            (Some("f64"), Some("f64x4"))
+        );
         // auto: the precision, the re-decisions, in words and as a fraction of the image
-        s.method = "auto";
+        s.method = "eplane+stable";
+        s.precision = "auto";
         s.redecided = Some(1);
-        assert_eq!(s.precision(), "auto");
         let text = s.text();
+        assert!(
+            text.contains("precision auto, method eplane+stable,"),
+            "{text}"
+        );
         assert!(
             text.contains("re-decided in f64: 1 pixel (1.0000% of the image)"),
             "{text}"
@@ -302,6 +305,7 @@ mod tests {
         for key in [
             "primitives",
             "kernel",
+            "precision",
             "method",
             "accel",
             "threads",

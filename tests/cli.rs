@@ -563,6 +563,92 @@ fn bad_arguments_are_rejected_naming_the_argument() {
     assert_rejected(&o, 2, &["--input"], &dir, &["scene1.sc"]);
 }
 
+/// `-fov=-30` was split by clap into `-f ov=-30` ("unexpected argument '-f'"): every
+/// single-dash option of the original assignment takes the `=` form as its GNU long form
+/// does, and a bad value gets the same message, spelled as typed.
+#[test]
+fn single_dash_options_take_the_equals_form() {
+    let dir = with_scene1("single-dash-eq");
+    for (arg, words, long) in [
+        ("-fov=-30", &["-fov -30", "180"][..], "--fov"),
+        ("-fov=0", &["-fov 0"], "--fov"),
+        ("-size=0x10", &["-size 0x10"], "--size"),
+        ("-cm=rainbow", &["rainbow", "-cm"], "--color-mode"),
+        ("-cv=curvy", &["curvy", "-cv"], "--color-variation"),
+        ("-time=yes", &["yes", "-time"], "--time"),
+    ] {
+        let o = run(&dir.path, &["-i", "scene1.sc", arg]);
+        assert_rejected(&o, 2, words, &dir, &["scene1.sc"]);
+        assert!(!stderr(&o).contains("'-f'"), "{arg}: {}", stderr(&o));
+        assert!(
+            !stderr(&o).contains(long),
+            "{arg}: spelled as typed: {}",
+            stderr(&o)
+        );
+    }
+    // and the valid values render exactly as the space form
+    ok(
+        &dir,
+        &[
+            "-i",
+            "scene1.sc",
+            "-o",
+            "eq.png",
+            "-size=320x200",
+            "-fov=45",
+            "-cm=ordered",
+            "-cv=log",
+        ],
+    );
+    ok(
+        &dir,
+        &[
+            "-i",
+            "scene1.sc",
+            "-o",
+            "sp.png",
+            "-size",
+            "320x200",
+            "-fov",
+            "45",
+            "-cm",
+            "ordered",
+            "-cv",
+            "log",
+        ],
+    );
+    assert_eq!(
+        image_of(&dir.join("eq.png"), 320, 200),
+        image_of(&dir.join("sp.png"), 320, 200)
+    );
+}
+
+/// `-i scene.png` with no `-o`: the default output (the input's name with `.png`) is the input
+/// itself. The message names what the user typed and the default that caused it, not a flag
+/// that was never given.
+#[test]
+fn default_output_equal_to_input_names_the_default_not_output_flag() {
+    let dir = TempDir::new("same-default");
+    dir.write("scene.png", KNOWN);
+    for flag in ["-i", "--input"] {
+        let o = run(&dir.path, &[flag, "scene.png", "-size", "16x12"]);
+        assert_rejected(
+            &o,
+            2,
+            &[
+                &format!("{flag} scene.png"),
+                "default output scene.png",
+                "overwrite",
+                "-o IMAGE",
+            ],
+            &dir,
+            &["scene.png"],
+        );
+        assert!(!stderr(&o).contains("--output"), "{}", stderr(&o));
+        assert_eq!(fs::read_to_string(dir.join("scene.png")).unwrap(), KNOWN);
+    }
+}
+
 #[test]
 fn output_equal_to_input_is_refused_and_the_input_kept() {
     let dir = TempDir::new("same");

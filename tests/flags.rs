@@ -343,3 +343,57 @@ fn out_of_range_values_and_flags_of_the_other_command_are_refused() {
         &["--max-mismatch-ppm", "unexpected argument"],
     );
 }
+
+/// `-time`, `--stats` and `compare` said "method auto" for the default run, a name `--method`
+/// refuses: precision and method are reported under their own names, each a value its flag
+/// accepts ("precision auto, method eplane+stable"), and the reported method, given back to
+/// `--method`, runs.
+#[test]
+fn precision_and_method_are_reported_under_their_own_names() {
+    let dir = with_scene("flags-report-names");
+    for (extra, precision, method) in [
+        (&[][..], "auto", "eplane+stable"),
+        (&["--precision", "f32"], "f32", "eplane+stable"),
+        (&["--precision", "f64"], "f64", "f64x4"),
+        (&["--method", "mt"], "f32", "mt"),
+        (&["--kernel", "scalar"], "f64", "eplane+stable"),
+        (&["--kernel", "scalar-f32"], "f32", "eplane+stable"),
+    ] {
+        let v = stats_of(&dir, extra);
+        assert_eq!(v["precision"].as_str(), Some(precision), "{extra:?}");
+        assert_eq!(v["method"].as_str(), Some(method), "{extra:?}");
+
+        let mut args = render_args(extra);
+        args.push("-time");
+        let text = accepted(&dir, &args);
+        assert!(
+            text.contains(&format!("precision {precision}, method {method},")),
+            "{extra:?}: {text}"
+        );
+        assert!(!text.contains("method auto"), "{extra:?}: {text}");
+
+        // the name reported is one --method takes
+        let mut again = render_args(extra);
+        if !extra.contains(&"--method") {
+            again.extend(["--method", method]);
+        }
+        accepted(&dir, &again);
+
+        if !extra.contains(&"--kernel") {
+            let args = compare_args(extra);
+            let o = run(&dir.path, &args);
+            assert_success(&o, &args.join(" "));
+            let report = stdout(&o);
+            assert!(
+                report.contains(&format!("\nprecision   {precision}\n")),
+                "{extra:?}: {report}"
+            );
+            assert!(
+                report.contains(&format!(
+                    "\nmethod      {method} against the f64 scalar oracle"
+                )),
+                "{extra:?}: {report}"
+            );
+        }
+    }
+}

@@ -30,10 +30,8 @@ fn every_method_renders_and_compares_on_a_seed_scene() {
             &["compare", "-i", "s.sc", "-size", "96x72", "--method", m],
         );
         assert_success(&cmp, m);
-        // the default method runs with the default precision, auto
-        let label = if m == "eplane+stable" { "auto" } else { m };
         assert!(
-            stdout(&cmp).contains(&format!("method      {label}")),
+            stdout(&cmp).contains(&format!("method      {m} against")),
             "{}",
             stdout(&cmp)
         );

@@ -131,3 +131,35 @@ fn a_reader_closing_the_pipe_early_is_a_quiet_end() {
         String::from_utf8_lossy(&o.stderr)
     );
 }
+
+/// A PNG written to a pipe whose reader has already gone (`lanecast -o - | true`) ends as
+/// quietly as a BMP: exit 0, nothing on stderr. The read end is closed before the run writes
+/// anything, so every size meets the closed pipe, the whole PNG in one write or many.
+#[test]
+fn broken_pipe_with_png_output_is_a_quiet_exit_0() {
+    let dir = TempDir::new("stdout-epipe-png");
+    dir.copy_in(&seed_scene(3), "s.sc");
+    for (size, format) in [("64x48", "png"), ("2000x2000", "png"), ("64x48", "bmp")] {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_lanecast"))
+            .args(["-i", "s.sc", "-o", "-", "--format", format, "-size", size])
+            .current_dir(&dir.path)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        // the only read end: closed now, before the render is done
+        drop(child.stdout.take());
+        let o = child.wait_with_output().unwrap();
+        assert_eq!(
+            o.status.code(),
+            Some(0),
+            "{format} {size}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        assert!(
+            o.stderr.is_empty(),
+            "{format} {size}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+    }
+}

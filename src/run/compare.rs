@@ -33,9 +33,10 @@ pub(crate) fn compare_command(s: &CompareSettings) -> Result<()> {
     let r = &report;
     let ppm = |n: usize| n as f64 * 1e6 / r.pixels.max(1) as f64;
     println!("scene       {}", s.view.input.display());
+    println!("precision   {}", super::precision_name(None, method));
     println!(
         "method      {} against the f64 scalar oracle",
-        method.name()
+        super::method_name(method)
     );
     println!(
         "pixels      {} ({}x{})",

@@ -104,7 +104,8 @@ pub(crate) fn render_command(s: &RenderSettings) -> Result<()> {
     } else {
         1
     };
-    stats.method = method.name();
+    stats.method = super::method_name(method);
+    stats.precision = super::precision_name(s.kernel.precision(), method);
     lap("setup", &mut stats, &mut clock);
 
     let (w, h) = (s.view.width as usize, s.view.height as usize);

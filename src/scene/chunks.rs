@@ -6,6 +6,7 @@
 //! 1-based number of its first line: the newlines of every chunk are counted in parallel and
 //! prefix-summed, so line numbers in messages are the file's own.
 
+use crate::error::{Error, Result};
 use crate::par::prelude::*;
 use std::fs::File;
 use std::io::Read;
@@ -13,15 +14,29 @@ use std::ops::Range;
 use std::path::Path;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
+/// How many bytes of a file are read first and searched for a NUL byte, which no text holds:
+/// a binary file (or `/dev/zero`) is refused from them, before anything else is read.
+pub const BINARY_PROBE: usize = 8192;
+
 /// The bytes of the file at `path`, at most `limit + 1` of them (so that the caller can tell a
-/// file that grew past the limit). A regular file is read in parallel, each thread of the
-/// current pool reading its parts into one lazily zeroed buffer: mapping a fresh buffer's pages
-/// costs more than copying the text in, and this way the threads share it. Anything else (a
-/// pipe, a file whose size changes while it is read) is read from start to end.
-pub fn read_file(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
-    let file = File::open(path)?;
-    let meta = file.metadata()?;
+/// file that grew past the limit). The first [`BINARY_PROBE`] bytes are read before the rest:
+/// a NUL among them refuses the file as binary ([`refuse_binary`], `text` naming the kind of
+/// text expected), and nothing more is read. `action` names I/O failures ("read scene").
+///
+/// The rest of a regular file is read in parallel, each thread of the current pool reading its
+/// parts into one lazily zeroed buffer: mapping a fresh buffer's pages costs more than copying
+/// the text in, and this way the threads share it. Anything else (a pipe, a file whose size
+/// changes while it is read) is read from start to end.
+pub fn read_file(path: &Path, limit: u64, action: &'static str, text: &str) -> Result<Vec<u8>> {
+    let io = |e| Error::io(path, action, e);
+    let mut file = File::open(path).map_err(io)?;
+    let meta = file.metadata().map_err(io)?;
     let len = meta.len();
+    let head = read_head(&mut file, path, limit, action, text)?;
+    if (head.len() as u64) < probe_len(limit) {
+        // the whole file
+        return Ok(head);
+    }
     #[cfg(unix)]
     if meta.is_file() && len > 0 && len <= limit {
         use std::os::unix::fs::FileExt;
@@ -36,10 +51,73 @@ pub fn read_file(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
             return Ok(bytes);
         }
     }
-    let mut bytes = Vec::with_capacity(len.min(limit) as usize);
-    // `take` guards against files that grow after the check, and special files.
-    file.take(limit.saturating_add(1)).read_to_end(&mut bytes)?;
-    Ok(bytes)
+    #[cfg(not(unix))]
+    let _ = len;
+    read_rest(file, head, limit).map_err(io)
+}
+
+/// [`read_file`] for a stream (standard input): the first bytes checked as binary, then the
+/// rest, at most `limit + 1` bytes in all. `name` names it in messages.
+pub fn read_stream(
+    mut r: impl Read,
+    name: &Path,
+    limit: u64,
+    action: &'static str,
+    text: &str,
+) -> Result<Vec<u8>> {
+    let head = read_head(&mut r, name, limit, action, text)?;
+    read_rest(r, head, limit).map_err(|e| Error::io(name, action, e))
+}
+
+/// How many bytes [`read_head`] asks for.
+fn probe_len(limit: u64) -> u64 {
+    (BINARY_PROBE as u64).min(limit.saturating_add(1))
+}
+
+/// The first bytes of `r` (all of them when it is shorter than [`BINARY_PROBE`]), refused as
+/// binary when they hold a NUL.
+fn read_head(
+    r: &mut impl Read,
+    path: &Path,
+    limit: u64,
+    action: &'static str,
+    text: &str,
+) -> Result<Vec<u8>> {
+    let mut head = Vec::with_capacity(BINARY_PROBE);
+    r.take(probe_len(limit))
+        .read_to_end(&mut head)
+        .map_err(|e| Error::io(path, action, e))?;
+    refuse_binary(path, &head, text)?;
+    Ok(head)
+}
+
+/// `head` followed by the rest of `r`, up to `limit + 1` bytes in all. `take` guards against
+/// files that grow after the size check, and special files.
+fn read_rest(r: impl Read, mut head: Vec<u8>, limit: u64) -> std::io::Result<Vec<u8>> {
+    let room = limit.saturating_add(1).saturating_sub(head.len() as u64);
+    r.take(room).read_to_end(&mut head)?;
+    Ok(head)
+}
+
+/// Refuses `bytes` (the start of `path`) when they hold a NUL byte: binary data, not `text`.
+/// The message names the line and column of the first NUL.
+pub fn refuse_binary(path: &Path, bytes: &[u8], text: &str) -> Result<()> {
+    let Some(at) = bytes.iter().position(|&b| b == 0) else {
+        return Ok(());
+    };
+    let line_start = bytes[..at]
+        .iter()
+        .rposition(|&b| b == b'\n')
+        .map_or(0, |i| i + 1);
+    let line = bytes[..line_start].iter().filter(|&&b| b == b'\n').count() + 1;
+    let prefix = String::from_utf8_lossy(&bytes[line_start..at]);
+    let prefix = prefix.strip_prefix('\u{feff}').unwrap_or(&prefix);
+    Err(Error::input(
+        path,
+        line,
+        prefix.chars().count() + 1,
+        format!("binary data (byte 0x00); {text} must be text"),
+    ))
 }
 
 /// A run of whole lines: `bytes[range]`, whose first line is line `first_line` of the file.

@@ -43,8 +43,7 @@ pub fn load_obj(path: &Path, max_triangles: usize) -> Result<(Mesh, usize)> {
             ),
         });
     }
-    let bytes =
-        chunks::read_file(path, MAX_SCENE_BYTES).map_err(|e| Error::io(path, "read mesh", e))?;
+    let bytes = chunks::read_file(path, MAX_SCENE_BYTES, "read mesh", "OBJ files")?;
     parse_obj(&bytes, path, max_triangles)
 }
 

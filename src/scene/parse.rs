@@ -73,12 +73,15 @@ pub fn load_scene_meshes(path: &Path) -> Result<(Scene, Vec<PathBuf>)> {
     if meta.len() > MAX_SCENE_BYTES {
         return Err(too_big(path, meta.len()));
     }
-    let bytes = chunks::read_file(path, MAX_SCENE_BYTES).map_err(io_err)?;
+    let bytes = chunks::read_file(path, MAX_SCENE_BYTES, "read scene", SCENE_TEXT)?;
     let mut meshes = Vec::new();
     let chunk = chunks::chunk_bytes(bytes.len());
     let scene = parse_bytes_meshes(&bytes, path, MAX_PRIMITIVES, chunk, &mut meshes)?;
     Ok((scene, meshes))
 }
+
+/// What a scene file must be, in the message that refuses a binary one.
+const SCENE_TEXT: &str = "scene files";
 
 /// The input path that means standard input (`-i -`).
 pub const STDIN: &str = "-";
@@ -88,14 +91,14 @@ pub const STDIN_NAME: &str = "<stdin>";
 /// A scene read from standard input (`-i -`), under the same size limit as a file, named
 /// [`STDIN_NAME`] in messages; its `mesh` paths are relative to the working folder.
 fn read_stdin_scene() -> Result<(Scene, Vec<PathBuf>)> {
-    use std::io::Read;
     let name = Path::new(STDIN_NAME);
-    let mut bytes = Vec::new();
-    std::io::stdin()
-        .lock()
-        .take(MAX_SCENE_BYTES + 1)
-        .read_to_end(&mut bytes)
-        .map_err(|e| Error::io(name, "read scene", e))?;
+    let bytes = chunks::read_stream(
+        std::io::stdin().lock(),
+        name,
+        MAX_SCENE_BYTES,
+        "read scene",
+        SCENE_TEXT,
+    )?;
     if bytes.len() as u64 > MAX_SCENE_BYTES {
         return Err(too_big(name, bytes.len() as u64));
     }
