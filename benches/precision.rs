@@ -9,7 +9,7 @@
 //! goes first alternating from round to round). A burst of load on this shared machine that
 //! lasts a few frames falls on both frames of a round, so it moves the second far less than
 //! the first. The target is taken on the paired one; `LANECAST_BENCH_NULL=1` times f32
-//! against itself, the noise floor of both (README, "Precision"). Each renderer is built
+//! against itself, the noise floor of both (docs/precision.md, "Speed"). Each renderer is built
 //! twice, first in one half of the rounds and second in the other.
 //!
 //! Scenes: the seven seed scenes at 1920x1080, and the scaling scenes of

@@ -1,6 +1,6 @@
 //! Render-phase throughput of the seed scenes: packet vs scalar f32 vs scalar f64, on one thread
 //! and on all threads, at 640x480 and 1920x1080. One criterion group per scene and size, so every
-//! ratio in README's bench table comes from one run (`scripts/bench_table.py` prints it).
+//! ratio in docs/performance.md's packet-against-scalar table comes from one run (`scripts/bench_table.py` prints it).
 //!
 //! `LANECAST_BENCH_QUICK=1` keeps one size (640x480) and fewer samples, for a fast look.
 

@@ -1,4 +1,4 @@
-//! Parse throughput (README: "Limits") on two generated files: a scene of 1e6 spheres, and a
+//! Parse throughput (docs/performance.md: "Parsing") on two generated files: a scene of 1e6 spheres, and a
 //! Wavefront OBJ grid mesh of 2e6 triangles (1e6 vertices: `v x y z` with 6 decimals, then
 //! `f a b c`). Run with
 //!

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The README's acceleration table: best render time of none / tiles / bvh, one thread.
+"""docs/performance.md's acceleration table: best render time of none / tiles / bvh, one thread.
 
     python3 scripts/accel_table.py [--rounds R]
 

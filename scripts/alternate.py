@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Alternated render timings of lanecast builds, for comparisons README quotes.
+"""Alternated render timings of lanecast builds, for comparisons docs/performance.md and docs/precision.md quote.
 
 Each BUILD is a lanecast binary, optionally with `:PRECISION` (auto, f32, f64). Every round
 runs every build on every scene in turn, one thread,

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Prints README's bench table from criterion's results of `cargo bench --bench render`.
+"""Prints docs/performance.md's packet-against-scalar table from criterion's results of `cargo bench --bench render`.
 
 Reads target/criterion/**/new/{benchmark,estimates}.json (written by the last bench run) and
 prints, per seed scene and size, Mrays/s of each kernel on 1 and all threads (mean estimate),

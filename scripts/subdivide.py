@@ -8,7 +8,7 @@ their midpoint, so the mesh stays closed where it was closed; the surface does n
 Triangle count grows 4x per level: the shared armadillo (52,000 triangles) becomes about
 3.3M triangles at 3 levels (`scenes/armadillo.sc` seen with `mesh` of the result). Output
 vertices are written with 6 decimals. Generated meshes are not committed: write them under
-target/ (README: "Scale").
+target/ (docs/performance.md: "The whole command and its phases").
 
 Reads `v` and `f` lines only (polygons fan-triangulated, `i/t/n` and negative indices
 accepted), like lanecast's own reader.

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""lanecast against the Embree 3 reference caster, side by side, in one run (issue: throughput).
+"""lanecast against the Embree 3 reference caster, side by side, in one run.
 
 Usage: python3 scripts/vs_embree.py [--rounds R] [--repeat K] [--quick]
 

@@ -1,4 +1,4 @@
-//! `--precision auto`, the guarantee (README "Precision", `render::redecide`): with every
+//! `--precision auto`, the guarantee (docs/precision.md, `render::redecide`): with every
 //! acceleration, every pixel's depth is within 1e-5 relative of the f64 oracle's for the same
 //! primitive, and ids differ from the oracle's only near a primitive's boundary or at genuine
 //! ties (both hit within 1e-5 relative). The band derived for "near" is `12u + a` of an edge

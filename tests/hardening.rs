@@ -1,4 +1,4 @@
-//! Hardening (issue 5) through the real binary: every rejected input in tests/bad/ ends in a
+//! Hardening through the real binary: every rejected input in tests/bad/ ends in a
 //! clear message, exit code 2 and no output; failed or interrupted runs never damage an
 //! existing output file nor leave a temporary file; numbers that parse but break f32
 //! arithmetic are rejected or rendered without NaN; regressions found by fuzzing.
@@ -524,7 +524,7 @@ fn sigint_during_write_removes_temporary_file() {
     eprintln!("caught a temporary file in {caught} of the runs");
 }
 
-// ---- Numbers that parse but break f32 arithmetic (README: "Numeric edges") ----
+// ---- Numbers that parse but break f32 arithmetic (README: "Limits") ----
 
 fn scene_in(dir: &TempDir, body: &str) -> PathBuf {
     let p = dir.path("s.sc");

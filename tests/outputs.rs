@@ -1,4 +1,4 @@
-//! The outputs of a run are a set (issue 12), through the real binary: every output checked
+//! The outputs of a run are a set, through the real binary: every output checked
 //! before any work (extension, no output naming a file the run reads or another output,
 //! writable folder), written to temporary files and renamed into place together, so a failure
 //! or an interrupt leaves every previous output byte-identical and no temporary file. Also the
@@ -61,7 +61,7 @@ fn refused(o: &Output, code: i32, words: &[&str], dir: &TempDir) {
 #[test]
 fn outputs_never_replace_a_mesh_the_scene_reads() {
     let dir = TempDir::new("mesh-guard");
-    // Reproduction 1 of the issue: `--ids` onto the OBJ, refused by its extension already.
+    // A first-seen case: `--ids` onto the OBJ, refused by its extension already.
     mesh_scene(&dir, "tri.obj");
     let obj = fs::read(dir.join("m/meshes/tri.obj")).unwrap();
     let o = run(&dir.path, &["-i", "m/s.sc", "--ids", "m/meshes/tri.obj"]);

@@ -1,4 +1,4 @@
-//! The accuracy lab's claims, one test each (README "where each method fails", docs/lab/):
+//! The accuracy lab's claims, one test each (docs/accuracy-lab.md, "Where each method fails"):
 //! which methods leak through shared edges and vertices of the closed meshes in
 //! scenes/stress/, which lose the far sphere, the stable sphere's depth bound, no hit at or
 //! behind the eye, f64 packets equal to the oracle, and every method's 8-lane form equal to its
