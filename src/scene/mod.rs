@@ -11,6 +11,7 @@ pub mod mesh;
 mod number;
 mod obj;
 pub mod parse;
+mod ply;
 mod scene_chunk;
 mod shapes;
 mod statement;
