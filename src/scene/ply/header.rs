@@ -192,9 +192,10 @@ pub fn parse(bytes: &[u8], path: &Path) -> Result<Header, Error> {
         if word == b"comment" || word == b"obj_info" {
             continue; // free text, any bytes
         }
+        // printable ASCII and tabs: anything else is most likely a binary body
         let text = std::str::from_utf8(raw)
             .ok()
-            .filter(|t| t.is_ascii())
+            .filter(|t| t.bytes().all(|b| b == b'\t' || (b' '..=b'~').contains(&b)))
             .ok_or_else(|| err("the header is not ASCII text (is end_header missing?)".into()))?;
         let toks: Vec<&str> = text.split_ascii_whitespace().collect();
         match toks.as_slice() {
