@@ -69,13 +69,18 @@ pub fn parse_ply(bytes: &[u8], path: &Path, max_triangles: usize) -> Result<(Mes
         let msg = format!("{} vertices; a mesh holds at most {}", v.count, u32::MAX);
         return Err(Error::input(path, v.line, 0, msg));
     }
-    let (vertices, faces) = match h.format {
-        Format::Ascii => ascii::read(bytes, &h, path, max_triangles)?,
+    let (vertices, faces, zero) = match h.format {
+        Format::Ascii => {
+            let (v, f) = ascii::read(bytes, &h, path, max_triangles)?;
+            (v, f, None)
+        }
         Format::Binary { big } => binary::read(bytes, &h, big, path, max_triangles)?,
     };
-    let zero = (faces.par_iter())
-        .filter(|t| degenerate(&t.map(|i| vertices[i as usize])))
-        .count();
+    let zero = zero.unwrap_or_else(|| {
+        (faces.par_iter())
+            .filter(|t| degenerate(&t.map(|i| vertices[i as usize])))
+            .count()
+    });
     Ok((Mesh { vertices, faces }, zero))
 }
 

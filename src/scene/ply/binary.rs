@@ -10,8 +10,11 @@
 //! of one size too. That is checked while the records are read: at a count other than 3 the
 //! element is read again record by record (`walk.rs`), as is anything else. The parallel passes
 //! note the lowest bad record, which is read again to word the message, so the error reported
-//! is the first in the file either way.
+//! is the first in the file either way. When the vertices come before the faces (as nearly
+//! always), the fast path for faces also counts the degenerate triangles, while their vertices
+//! are at hand.
 
+use super::super::obj::degenerate;
 use super::at_byte;
 use super::header::{Element, Header, Kind, Type};
 use super::walk::{self, Bad, Source};
@@ -25,6 +28,8 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 trait Scalar {
     /// The value at the start of `b`, big-endian when `BIG`, exactly as an f64.
     fn get<const BIG: bool>(b: &[u8]) -> f64;
+    /// The same as an i64: exact for the integer types (vertex indices).
+    fn int<const BIG: bool>(b: &[u8]) -> i64;
 }
 
 macro_rules! scalar {
@@ -35,6 +40,13 @@ macro_rules! scalar {
                 const N: usize = std::mem::size_of::<$t>();
                 let a: [u8; N] = b[..N].try_into().expect("N bytes");
                 (if BIG { <$t>::from_be_bytes(a) } else { <$t>::from_le_bytes(a) }) as f64
+            }
+
+            #[inline(always)]
+            fn int<const BIG: bool>(b: &[u8]) -> i64 {
+                const N: usize = std::mem::size_of::<$t>();
+                let a: [u8; N] = b[..N].try_into().expect("N bytes");
+                (if BIG { <$t>::from_be_bytes(a) } else { <$t>::from_le_bytes(a) }) as i64
             }
         }
     )*};
@@ -151,21 +163,23 @@ impl Walk<'_> {
 }
 
 /// The vertices and triangles of the binary body of `bytes` (big-endian when `big`), with at
-/// most `max` triangles. The header is checked (`header::parse`).
+/// most `max` triangles, and how many triangles are degenerate when the fast path for faces
+/// counted them on the way (it does when the vertices come first). The header is checked
+/// (`header::parse`).
 pub fn read(
     bytes: &[u8],
     h: &Header,
     big: bool,
     path: &Path,
     max: usize,
-) -> Result<(Vec<DVec3>, Vec<[u32; 3]>), Error> {
+) -> Result<(Vec<DVec3>, Vec<[u32; 3]>, Option<usize>), Error> {
     let mut w = Walk {
         bytes,
         at: h.body,
         big,
         path,
     };
-    let (mut verts, mut faces) = (Vec::new(), Vec::new());
+    let (mut verts, mut faces, mut zero) = (Vec::new(), Vec::new(), None);
     for (e, el) in h.elements.iter().enumerate() {
         let size = el.fixed_size();
         if e == h.vertex {
@@ -178,9 +192,11 @@ pub fn read(
                 None => walk::vertices(&mut w, el, h.xyz, &mut verts)?,
             }
         } else if e == h.face {
-            match uniform_faces(&w, el, h.list, h.vertices())? {
-                Some((read, size)) => {
+            let read = (e > h.vertex).then_some(&verts[..]);
+            match uniform_faces(&w, el, h.list, h.vertices(), read)? {
+                Some((read, size, degenerate)) => {
                     faces = read;
+                    zero = degenerate;
                     w.at += size * el.count;
                 }
                 None => walk::faces(&mut w, el, h.list, h.vertices(), max, &mut faces)?,
@@ -200,7 +216,7 @@ pub fn read(
         );
         return Err(at_byte(path, w.at, msg));
     }
-    Ok((verts, faces))
+    Ok((verts, faces, zero))
 }
 
 /// The `el.count` vertex records of `size` bytes from `bytes[start..]` (all there), in
@@ -268,15 +284,17 @@ fn records(
 }
 
 /// The faces of `el` when every one is a triangle and its only list is the index list `list`:
-/// the triangles, in parallel, and the record size; `None` when they are not (or the file is
-/// too short for it), for the walk to read. An index out of range is an error here already when
-/// no face before it has another count.
+/// the triangles, in parallel, the record size, and how many triangles are degenerate when the
+/// `verts` are given (read already); `None` when they are not all triangles (or the file is too
+/// short for it), for the walk to read. An index out of range is an error here already when no
+/// face before it has another count.
 fn uniform_faces(
     w: &Walk,
     el: &Element,
     list: usize,
     vertices: usize,
-) -> Result<Option<(Vec<[u32; 3]>, usize)>, Error> {
+    verts: Option<&[DVec3]>,
+) -> Result<Option<(Vec<[u32; 3]>, usize, Option<usize>)>, Error> {
     let Kind::List { count, item } = el.props[list].kind else {
         unreachable!("the header checks the list")
     };
@@ -299,47 +317,139 @@ fn uniform_faces(
         return Ok(None);
     }
     let body = &w.bytes[w.at..w.at + size * el.count];
-    // the count 3 as its bytes
-    let mut three = [0u8; 4];
-    three[if w.big { cs - 1 } else { 0 }] = 3;
-    let three = &three[..cs];
+    // whether a count is 3, compared as a whole word (not through `memcmp`)
+    let is_three = |c: &[u8]| match *c {
+        [n] => n == 3,
+        [a, b] => u16::from_be_bytes([a, b]) == if w.big { 3 } else { 3 << 8 },
+        [a, b, c, d] => u32::from_be_bytes([a, b, c, d]) == if w.big { 3 } else { 3 << 24 },
+        _ => unreachable!("integer counts are 1, 2 or 4 bytes"),
+    };
     let (odd, bad) = (AtomicUsize::new(usize::MAX), AtomicUsize::new(usize::MAX));
-    let n = vertices as f64;
+    let zero = AtomicUsize::new(0);
     let first = pre + cs;
-    let faces: Vec<[u32; 3]> = with_type!(item, T => {
-        let get = |r: &[u8]| -> [f64; 3] {
-            if w.big {
-                [0, 1, 2].map(|k| T::get::<true>(&r[first + k * is..]))
-            } else {
-                [0, 1, 2].map(|k| T::get::<false>(&r[first + k * is..]))
-            }
-        };
-        (body.par_chunks_exact(size).enumerate())
-            .with_min_len(1 << 12)
-            .map(|(f, r)| {
-                if &r[pre..first] != three {
-                    odd.fetch_min(f, Ordering::Relaxed);
-                    return [0; 3];
-                }
-                let t = get(r);
-                if !t.iter().all(|&i| i >= 0.0 && i < n) {
-                    bad.fetch_min(f, Ordering::Relaxed);
-                    return [0; 3];
-                }
-                t.map(|i| i as u32)
-            })
-            .collect()
+    let at = Uniform {
+        size,
+        count: pre,
+        first,
+        item: is,
+        vertices: vertices as u64,
+    };
+    let faces = with_type!(item, T => if w.big {
+        at.triangles::<T, true>(body, &is_three, verts, [&odd, &bad, &zero])
+    } else {
+        at.triangles::<T, false>(body, &is_three, verts, [&odd, &bad, &zero])
     });
     let (odd, bad) = (odd.into_inner(), bad.into_inner());
     if bad < odd {
         // every record before `odd` is a triangle, so record `bad` is where it was read
         let rec = &body[bad * size..];
         let (k, i) = ((0..3).map(|k| (k, value(item, w.big, &rec[first + k * is..]))))
-            .find(|&(_, i)| !(i >= 0.0 && i < n))
+            .find(|&(_, i)| !(i >= 0.0 && i < vertices as f64))
             .expect("an index out of range");
         let mark = w.at + bad * size + first + k * is;
         let msg = walk::out_of_range(i, vertices);
         return Err(w.error_at(mark, "face", bad, msg));
     }
-    Ok((odd == usize::MAX).then_some((faces, size)))
+    let zero = verts.map(|_| zero.into_inner());
+    Ok((odd == usize::MAX).then_some((faces, size, zero)))
+}
+
+/// Where the parts of a face record of one size are: the count at `count`, the three indices
+/// of `item` bytes each from `first`.
+struct Uniform {
+    size: usize,
+    count: usize,
+    first: usize,
+    item: usize,
+    vertices: u64,
+}
+
+impl Uniform {
+    /// The triangles of `body`, indices of type `T`, in parallel. Notes the first record whose
+    /// count is not 3 in `odd`, the first with an index out of range in `bad` (their triangles
+    /// are left zero), and counts the degenerate triangles in `zero` when given the `verts`.
+    fn triangles<T: Scalar, const BIG: bool>(
+        &self,
+        body: &[u8],
+        is_three: &(impl Fn(&[u8]) -> bool + Sync),
+        verts: Option<&[DVec3]>,
+        [odd, bad, zero]: [&AtomicUsize; 3],
+    ) -> Vec<[u32; 3]> {
+        (body.par_chunks_exact(self.size).enumerate())
+            .with_min_len(1 << 12)
+            .map(|(f, r)| {
+                if !is_three(&r[self.count..self.first]) {
+                    odd.fetch_min(f, Ordering::Relaxed);
+                    return [0; 3];
+                }
+                let t = [0, 1, 2].map(|k| T::int::<BIG>(&r[self.first + k * self.item..]));
+                // a negative index wraps to beyond any vertex count
+                if !t.iter().all(|&i| (i as u64) < self.vertices) {
+                    bad.fetch_min(f, Ordering::Relaxed);
+                    return [0; 3];
+                }
+                let t = t.map(|i| i as u32);
+                if verts.is_some_and(|v| degenerate(&t.map(|i| v[i as usize]))) {
+                    zero.fetch_add(1, Ordering::Relaxed);
+                }
+                t
+            })
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::header;
+    use super::*;
+
+    /// Triangles with counts of every integer type, in both byte orders, take the fast path.
+    #[test]
+    fn triangle_counts_of_every_integer_type_take_the_fast_path() {
+        let int = [
+            Type::I8,
+            Type::U8,
+            Type::I16,
+            Type::U16,
+            Type::I32,
+            Type::U32,
+        ];
+        for big in [false, true] {
+            for count in int {
+                let order = if big { "big" } else { "little" };
+                let mut b = format!(
+                    "ply\nformat binary_{order}_endian 1.0\nelement vertex 3\n\
+                     property uchar x\nproperty uchar y\nproperty uchar z\nelement face 2\n\
+                     property list {} ushort vertex_indices\nend_header\n",
+                    count.name()
+                )
+                .into_bytes();
+                b.extend([0, 0, 0, 1, 0, 0, 0, 1, 0]);
+                for _ in 0..2 {
+                    let mut three = vec![0; count.size()];
+                    three[if big { count.size() - 1 } else { 0 }] = 3;
+                    b.extend(three);
+                    for i in [0u16, 1, 2] {
+                        b.extend(if big {
+                            i.to_be_bytes()
+                        } else {
+                            i.to_le_bytes()
+                        });
+                    }
+                }
+                let path = Path::new("t.ply");
+                let h = header::parse(&b, path).unwrap();
+                let w = Walk {
+                    bytes: &b,
+                    at: h.body + 9,
+                    big,
+                    path,
+                };
+                let el = &h.elements[h.face];
+                let fast = uniform_faces(&w, el, h.list, 3, None).unwrap();
+                let (faces, size, _) = fast.unwrap_or_else(|| panic!("{count:?} big {big}"));
+                assert_eq!((faces, size), (vec![[0, 1, 2]; 2], count.size() + 6));
+            }
+        }
+    }
 }
