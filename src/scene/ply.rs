@@ -45,6 +45,7 @@ use super::mesh::read_mesh_file;
 use super::obj::degenerate;
 use super::shapes::Mesh;
 use crate::error::{Error, Result};
+use glam::DVec3;
 use header::Format;
 use rayon::prelude::*;
 use std::path::{Path, PathBuf};
@@ -69,19 +70,28 @@ pub fn parse_ply(bytes: &[u8], path: &Path, max_triangles: usize) -> Result<(Mes
         let msg = format!("{} vertices; a mesh holds at most {}", v.count, u32::MAX);
         return Err(Error::input(path, v.line, 0, msg));
     }
-    let (vertices, faces, zero) = match h.format {
-        Format::Ascii => {
-            let (v, f) = ascii::read(bytes, &h, path, max_triangles)?;
-            (v, f, None)
-        }
+    let Body {
+        vertices,
+        faces,
+        degenerate: counted,
+    } = match h.format {
+        Format::Ascii => ascii::read(bytes, &h, path, max_triangles)?,
         Format::Binary { big } => binary::read(bytes, &h, big, path, max_triangles)?,
     };
-    let zero = zero.unwrap_or_else(|| {
+    let zero = counted.unwrap_or_else(|| {
         (faces.par_iter())
             .filter(|t| degenerate(&t.map(|i| vertices[i as usize])))
             .count()
     });
     Ok((Mesh { vertices, faces }, zero))
+}
+
+/// A body, read: the vertices, the triangles, and how many triangles are degenerate when the
+/// reader counted them on the way.
+struct Body {
+    vertices: Vec<DVec3>,
+    faces: Vec<[u32; 3]>,
+    degenerate: Option<usize>,
 }
 
 /// An error at byte `offset` of the file `path` (in a binary body).

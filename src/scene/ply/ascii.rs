@@ -11,10 +11,10 @@
 //! record, whitespace and blank lines aside.
 
 use super::super::number;
+use super::Body;
 use super::header::{Header, Type, clip};
 use super::walk::{self, Bad, Source};
 use crate::error::Error;
-use glam::DVec3;
 use std::ops::Range;
 use std::path::Path;
 
@@ -143,12 +143,7 @@ fn integer(tok: &[u8], t: Type) -> Option<f64> {
 
 /// The vertices and triangles of the ASCII body of `bytes`, with at most `max` triangles. The
 /// header is checked (`header::parse`).
-pub fn read(
-    bytes: &[u8],
-    h: &Header,
-    path: &Path,
-    max: usize,
-) -> Result<(Vec<DVec3>, Vec<[u32; 3]>), Error> {
+pub fn read(bytes: &[u8], h: &Header, path: &Path, max: usize) -> Result<Body, Error> {
     let body = &bytes[h.body..];
     let mut s = Lines {
         body,
@@ -174,5 +169,9 @@ pub fn read(
             return Err(Error::input(path, s.line, 0, msg));
         }
     }
-    Ok((verts, faces))
+    Ok(Body {
+        vertices: verts,
+        faces,
+        degenerate: None,
+    })
 }

@@ -15,9 +15,9 @@
 //! are at hand.
 
 use super::super::obj::degenerate;
-use super::at_byte;
 use super::header::{Element, Header, Kind, Type};
 use super::walk::{self, Bad, Source};
+use super::{Body, at_byte};
 use crate::error::Error;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -166,20 +166,14 @@ impl Walk<'_> {
 /// most `max` triangles, and how many triangles are degenerate when the fast path for faces
 /// counted them on the way (it does when the vertices come first). The header is checked
 /// (`header::parse`).
-pub fn read(
-    bytes: &[u8],
-    h: &Header,
-    big: bool,
-    path: &Path,
-    max: usize,
-) -> Result<(Vec<DVec3>, Vec<[u32; 3]>, Option<usize>), Error> {
+pub fn read(bytes: &[u8], h: &Header, big: bool, path: &Path, max: usize) -> Result<Body, Error> {
     let mut w = Walk {
         bytes,
         at: h.body,
         big,
         path,
     };
-    let (mut verts, mut faces, mut zero) = (Vec::new(), Vec::new(), None);
+    let (mut verts, mut faces, mut degenerate) = (Vec::new(), Vec::new(), None);
     for (e, el) in h.elements.iter().enumerate() {
         let size = el.fixed_size();
         if e == h.vertex {
@@ -194,9 +188,10 @@ pub fn read(
         } else if e == h.face {
             let read = (e > h.vertex).then_some(&verts[..]);
             match uniform_faces(&w, el, h.list, h.vertices(), read)? {
-                Some((read, size, degenerate)) => {
-                    faces = read;
-                    zero = degenerate;
+                Some(fast) => {
+                    faces = fast.faces;
+                    degenerate = fast.degenerate;
+                    let size = fast.size;
                     w.at += size * el.count;
                 }
                 None => walk::faces(&mut w, el, h.list, h.vertices(), max, &mut faces)?,
@@ -216,7 +211,11 @@ pub fn read(
         );
         return Err(at_byte(path, w.at, msg));
     }
-    Ok((verts, faces, zero))
+    Ok(Body {
+        vertices: verts,
+        faces,
+        degenerate,
+    })
 }
 
 /// The `el.count` vertex records of `size` bytes from `bytes[start..]` (all there), in
@@ -294,7 +293,7 @@ fn uniform_faces(
     list: usize,
     vertices: usize,
     verts: Option<&[DVec3]>,
-) -> Result<Option<(Vec<[u32; 3]>, usize, Option<usize>)>, Error> {
+) -> Result<Option<Fast>, Error> {
     let Kind::List { count, item } = el.props[list].kind else {
         unreachable!("the header checks the list")
     };
@@ -350,8 +349,20 @@ fn uniform_faces(
         let msg = walk::out_of_range(i, vertices);
         return Err(w.error_at(mark, "face", bad, msg));
     }
-    let zero = verts.map(|_| zero.into_inner());
-    Ok((odd == usize::MAX).then_some((faces, size, zero)))
+    let degenerate = verts.map(|_| zero.into_inner());
+    Ok((odd == usize::MAX).then_some(Fast {
+        faces,
+        size,
+        degenerate,
+    }))
+}
+
+/// Faces read by the fast path: the triangles, the record size, and how many triangles are
+/// degenerate when the vertices were at hand.
+struct Fast {
+    faces: Vec<[u32; 3]>,
+    size: usize,
+    degenerate: Option<usize>,
 }
 
 /// Where the parts of a face record of one size are: the count at `count`, the three indices
@@ -447,8 +458,9 @@ mod tests {
                 };
                 let el = &h.elements[h.face];
                 let fast = uniform_faces(&w, el, h.list, 3, None).unwrap();
-                let (faces, size, _) = fast.unwrap_or_else(|| panic!("{count:?} big {big}"));
-                assert_eq!((faces, size), (vec![[0, 1, 2]; 2], count.size() + 6));
+                let fast = fast.unwrap_or_else(|| panic!("{count:?} big {big}"));
+                assert_eq!(fast.faces, vec![[0, 1, 2]; 2]);
+                assert_eq!(fast.size, count.size() + 6);
             }
         }
     }

@@ -89,17 +89,17 @@ fn header_errors_name_the_file_and_line() {
             "version '2.0'",
         ),
         (
-            format!("ply\nformat binary_middle_endian 1.0\n"),
+            "ply\nformat binary_middle_endian 1.0\n".to_string(),
             2,
             "unknown format",
         ),
         (
-            format!("ply\nformat ascii 1.0\nformat ascii 1.0\n"),
+            "ply\nformat ascii 1.0\nformat ascii 1.0\n".to_string(),
             3,
             "second format",
         ),
         (
-            format!("ply\nformat ascii 1.0\nproperty float x\n"),
+            "ply\nformat ascii 1.0\nproperty float x\n".to_string(),
             3,
             "before any element",
         ),
@@ -119,11 +119,11 @@ fn header_errors_name_the_file_and_line() {
             "unknown header keyword",
         ),
         (
-            format!("ply\nformat ascii 1.0\nelement vertex -3\n"),
+            "ply\nformat ascii 1.0\nelement vertex -3\n".to_string(),
             3,
             "not an element count",
         ),
-        (format!("ply\nformat ascii 1.0\n\n"), 3, "blank line"),
+        ("ply\nformat ascii 1.0\n\n".to_string(), 3, "blank line"),
         (
             format!("ply\n{v}{f}end_header\n{body}"),
             8,
