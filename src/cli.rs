@@ -98,7 +98,7 @@ enum Sub {
 
 #[derive(Args, Debug)]
 struct View {
-    /// Scene file (.sc), or an OBJ mesh rendered alone with a framing camera (.obj)
+    /// Scene file (.sc), or a mesh rendered alone with a framing camera (.obj, .ply)
     #[arg(short = 'i', long = "input", value_name = "SCENE.sc", required = true)]
     input: Option<PathBuf>,
     /// Camera position X,Y,Z, replacing the scene's eye (validated as the camera line is)

@@ -21,13 +21,19 @@ pub const BINARY_PROBE: usize = 8192;
 /// The bytes of the file at `path`, at most `limit + 1` of them (so that the caller can tell a
 /// file that grew past the limit). The first [`BINARY_PROBE`] bytes are read before the rest:
 /// a NUL among them refuses the file as binary ([`refuse_binary`], `text` naming the kind of
-/// text expected), and nothing more is read. `action` names I/O failures ("read scene").
+/// text expected), and nothing more is read; `text` is `None` for a format with a binary form
+/// (PLY), read whatever it holds. `action` names I/O failures ("read scene").
 ///
 /// The rest of a regular file is read in parallel, each thread of the current pool reading its
 /// parts into one lazily zeroed buffer: mapping a fresh buffer's pages costs more than copying
 /// the text in, and this way the threads share it. Anything else (a pipe, a file whose size
 /// changes while it is read) is read from start to end.
-pub fn read_file(path: &Path, limit: u64, action: &'static str, text: &str) -> Result<Vec<u8>> {
+pub fn read_file(
+    path: &Path,
+    limit: u64,
+    action: &'static str,
+    text: Option<&str>,
+) -> Result<Vec<u8>> {
     let io = |e| Error::io(path, action, e);
     let mut file = File::open(path).map_err(io)?;
     let meta = file.metadata().map_err(io)?;
@@ -65,7 +71,7 @@ pub fn read_stream(
     action: &'static str,
     text: &str,
 ) -> Result<Vec<u8>> {
-    let head = read_head(&mut r, name, limit, action, text)?;
+    let head = read_head(&mut r, name, limit, action, Some(text))?;
     read_rest(r, head, limit).map_err(|e| Error::io(name, action, e))
 }
 
@@ -81,13 +87,15 @@ fn read_head(
     path: &Path,
     limit: u64,
     action: &'static str,
-    text: &str,
+    text: Option<&str>,
 ) -> Result<Vec<u8>> {
     let mut head = Vec::with_capacity(BINARY_PROBE);
     r.take(probe_len(limit))
         .read_to_end(&mut head)
         .map_err(|e| Error::io(path, action, e))?;
-    refuse_binary(path, &head, text)?;
+    if let Some(text) = text {
+        refuse_binary(path, &head, text)?;
+    }
     Ok(head)
 }
 

@@ -1,4 +1,5 @@
-//! `mesh PATH`: triangles from a Wavefront OBJ file.
+//! `mesh PATH`: triangles from a Wavefront OBJ file, or a PLY file (`ply.rs`), by the file's
+//! extension ([`load_mesh`]).
 //!
 //! Read here, by hand, rather than with an OBJ crate: only `v` and `f` lines matter, and every
 //! error must name the OBJ file and line, which the crates' error types do not carry. `v x y z
@@ -31,8 +32,47 @@ use glam::DVec3;
 use std::path::Path;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-/// The triangles of the OBJ file at `path`, in file order, and how many are degenerate.
-pub fn load_obj(path: &Path, max_triangles: usize) -> Result<(Mesh, usize)> {
+pub use super::ply::{load_ply, parse_ply};
+
+/// The mesh formats lanecast reads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MeshFormat {
+    /// Wavefront OBJ ([`load_obj`]).
+    Obj,
+    /// PLY, ASCII or binary ([`load_ply`]).
+    Ply,
+}
+
+impl MeshFormat {
+    /// The format of the file at `path`, by its extension (case-insensitive): `.ply` is PLY,
+    /// `.obj` is OBJ, anything else `None`.
+    pub fn of(path: &Path) -> Option<MeshFormat> {
+        let ext = path.extension().and_then(|e| e.to_str())?;
+        if ext.eq_ignore_ascii_case("ply") {
+            Some(MeshFormat::Ply)
+        } else if ext.eq_ignore_ascii_case("obj") {
+            Some(MeshFormat::Obj)
+        } else {
+            None
+        }
+    }
+}
+
+/// The triangles of the mesh file at `path`, in file order, and how many are degenerate: a
+/// `.ply` file (any case) through [`load_ply`], any other through [`load_obj`]. The choice is
+/// the extension's alone, made before the file is read: a binary PLY body holds NUL bytes, and
+/// no check meant for text files sees it.
+pub fn load_mesh(path: &Path, max_triangles: usize) -> Result<(Mesh, usize)> {
+    match MeshFormat::of(path) {
+        Some(MeshFormat::Ply) => load_ply(path, max_triangles),
+        Some(MeshFormat::Obj) | None => load_obj(path, max_triangles),
+    }
+}
+
+/// The bytes of the mesh file at `path`, its size checked against `MAX_SCENE_BYTES` first;
+/// refused as binary when its first bytes hold a NUL and `text` names the text expected
+/// ([`chunks::read_file`]).
+pub(super) fn read_mesh_file(path: &Path, text: Option<&str>) -> Result<Vec<u8>> {
     let meta = std::fs::metadata(path).map_err(|e| Error::io(path, "read mesh", e))?;
     if meta.len() > MAX_SCENE_BYTES {
         return Err(Error::InputFile {
@@ -43,7 +83,12 @@ pub fn load_obj(path: &Path, max_triangles: usize) -> Result<(Mesh, usize)> {
             ),
         });
     }
-    let bytes = chunks::read_file(path, MAX_SCENE_BYTES, "read mesh", "OBJ files")?;
+    chunks::read_file(path, MAX_SCENE_BYTES, "read mesh", text)
+}
+
+/// The triangles of the OBJ file at `path`, in file order, and how many are degenerate.
+pub fn load_obj(path: &Path, max_triangles: usize) -> Result<(Mesh, usize)> {
+    let bytes = read_mesh_file(path, Some("OBJ files"))?;
     parse_obj(&bytes, path, max_triangles)
 }
 

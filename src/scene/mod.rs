@@ -11,6 +11,7 @@ pub(crate) mod mesh;
 mod number;
 mod obj;
 pub(crate) mod parse;
+mod ply;
 mod scene_chunk;
 mod shapes;
 mod statement;

@@ -64,16 +64,16 @@ pub fn load_scene_meshes(path: &Path) -> Result<(Scene, Vec<PathBuf>)> {
     if path == Path::new(STDIN) {
         return read_stdin_scene();
     }
-    let is_obj = path.extension().and_then(|e| e.to_str());
-    if is_obj.is_some_and(|e| e.eq_ignore_ascii_case("obj")) {
-        return load_obj_scene(path).map(|scene| (scene, Vec::new()));
+    // a mesh file, by its extension alone, before anything reads the file as scene text
+    if mesh::MeshFormat::of(path).is_some() {
+        return load_mesh_scene(path).map(|scene| (scene, Vec::new()));
     }
     let io_err = |e| Error::io(path, "read scene", e);
     let meta = std::fs::metadata(path).map_err(io_err)?;
     if meta.len() > MAX_SCENE_BYTES {
         return Err(too_big(path, meta.len()));
     }
-    let bytes = chunks::read_file(path, MAX_SCENE_BYTES, "read scene", SCENE_TEXT)?;
+    let bytes = chunks::read_file(path, MAX_SCENE_BYTES, "read scene", Some(SCENE_TEXT))?;
     let mut meshes = Vec::new();
     let chunk = chunks::chunk_bytes(bytes.len());
     let scene = parse_bytes_meshes(&bytes, path, MAX_PRIMITIVES, chunk, &mut meshes)?;
@@ -344,11 +344,11 @@ fn join(
 /// which fits the default 60-degree horizontal field of view on images up to 2.15:1 wide.
 const FRAMING_HALF_ANGLE_DEG: f64 = 15.0;
 
-/// An OBJ file rendered on its own (`lanecast -i mesh.obj`): its faces as triangles, in file
-/// order, seen by [`framing_camera`]. Shapes carry line 0 (no scene line); range errors name the
+/// An OBJ or PLY file rendered on its own (`lanecast -i mesh.obj`, `-i scan.ply`): its faces as
+/// triangles, in file order, seen by [`framing_camera`]. Shapes carry line 0 (no scene line); range errors name the
 /// face instead (`validate::f32_range`).
-fn load_obj_scene(path: &Path) -> Result<Scene> {
-    let (mesh, degenerate) = mesh::load_obj(path, MAX_PRIMITIVES)?;
+fn load_mesh_scene(path: &Path) -> Result<Scene> {
+    let (mesh, degenerate) = mesh::load_mesh(path, MAX_PRIMITIVES)?;
     let camera = framing_camera(&mesh).ok_or_else(|| Error::InputFile {
         file: path.to_path_buf(),
         msg: "no faces with extent to frame; a mesh to render alone needs at least one".into(),
@@ -408,7 +408,7 @@ fn load_mesh(
 ) -> Result<Mesh> {
     // A mesh that cannot be read is an I/O error like a scene that cannot be read (exit 1),
     // reported at the line naming it.
-    let (mesh, degenerate) = mesh::load_obj(path, room).map_err(|e| match e {
+    let (mesh, degenerate) = mesh::load_mesh(path, room).map_err(|e| match e {
         Error::Io { source, .. } => Error::IoAt {
             file: file.to_path_buf(),
             line,
