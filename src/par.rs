@@ -217,6 +217,7 @@ mod seq {
     pub(crate) trait ParallelSlice<T> {
         fn par_iter(&self) -> Seq<std::slice::Iter<'_, T>>;
         fn par_chunks(&self, size: usize) -> Seq<std::slice::Chunks<'_, T>>;
+        fn par_chunks_exact(&self, size: usize) -> Seq<std::slice::ChunksExact<'_, T>>;
         fn par_windows(&self, size: usize) -> Seq<std::slice::Windows<'_, T>>;
     }
 
@@ -226,6 +227,9 @@ mod seq {
         }
         fn par_chunks(&self, size: usize) -> Seq<std::slice::Chunks<'_, T>> {
             Seq(self.chunks(size))
+        }
+        fn par_chunks_exact(&self, size: usize) -> Seq<std::slice::ChunksExact<'_, T>> {
+            Seq(self.chunks_exact(size))
         }
         fn par_windows(&self, size: usize) -> Seq<std::slice::Windows<'_, T>> {
             Seq(self.windows(size))
@@ -293,6 +297,8 @@ mod tests {
             out.push(format!("{lo} {hi}"));
             let sums: Vec<u32> = data.par_chunks(64).map(|c| c.iter().sum()).collect();
             out.push(format!("{sums:?}"));
+            let exact: Vec<u32> = data.par_chunks_exact(64).map(|c| c[63]).collect();
+            out.push(format!("{exact:?}"));
             let rising = data.par_windows(2).filter(|w| w[0] < w[1]).count();
             out.push(format!("{rising}"));
             let indexed: Vec<(usize, u32)> = data
