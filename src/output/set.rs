@@ -24,9 +24,12 @@
 //! failure leaves the previous set. Only where hard links are not supported, or a process is
 //! killed (SIGKILL) inside the loop, can a mixed set remain.
 //!
-//! The temporary files are created under exclusive locks on the folders of every output
-//! ([`FolderLock`]), after the stale temporary files of killed runs are removed from those
-//! folders (the `stale` module).
+//! Concurrent runs: the temporary files are created, and the commit (the renames and the folder
+//! syncs) runs, under exclusive locks on the folders of every output ([`FolderLock`]). Two runs
+//! that share an output folder commit one after the other, so the set left is the whole set of
+//! the last to commit, never a mix of both; their renders still run at the same time. Before
+//! creating its temporary files, a set removes the stale ones of killed runs from its folders
+//! (the `stale` module).
 
 use std::fs::{self, File};
 use std::io::{self, BufWriter, Write};
@@ -96,6 +99,8 @@ struct Out {
 #[derive(Debug)]
 pub struct OutputSet {
     outs: Vec<Out>,
+    /// How long to wait for the folders' locks ([`lock_wait`]).
+    wait: Duration,
 }
 
 /// The verb phrase of I/O messages about the output of `flag`.
@@ -208,7 +213,10 @@ impl OutputSet {
         for folder in lock.folders() {
             stale::remove_stale(folder);
         }
-        let mut set = OutputSet { outs: Vec::new() };
+        let mut set = OutputSet {
+            outs: Vec::new(),
+            wait,
+        };
         for &(flag, path) in outputs {
             let (tmp, hold) = create_temp(path).map_err(|e| {
                 let dir = parent_dir(path);
@@ -326,6 +334,9 @@ impl OutputSet {
                 o.path.display()
             )));
         }
+        // Runs replacing outputs in the same folders commit one at a time (the `lock` module);
+        // taken before the registry, so that an interrupt while waiting ends the run at once.
+        let lock = FolderLock::acquire(self.outs.iter().map(|o| o.path.as_path()), self.wait)?;
         // Held across the whole loop: an interrupt waits for it (see the module docs).
         let mut list = pending();
         let backups: Vec<Backup> = self.outs.iter().map(|o| backup(&o.path)).collect();
@@ -364,6 +375,7 @@ impl OutputSet {
                 synced.push(dir);
             }
         }
+        drop(lock);
         Ok(())
     }
 }
