@@ -4,8 +4,9 @@ use std::fmt;
 use std::path::PathBuf;
 
 /// Every way a lanecast run can fail. `exit_code` maps each to the documented code:
-/// 2 for bad usage or bad input (content), 1 for everything else: I/O (a missing or unreadable
-/// scene or mesh file, an unwritable output) and failed comparisons.
+/// 2 for bad usage or bad input (content), 75 for an output folder whose lock another run held
+/// too long, 1 for everything else: I/O (a missing or unreadable scene or mesh file, an
+/// unwritable output) and failed comparisons.
 #[derive(Debug)]
 pub enum Error {
     /// A bad command-line argument; the message names the argument.
@@ -51,17 +52,31 @@ pub enum Error {
         /// The underlying I/O error.
         source: std::io::Error,
     },
+    /// Another run held the lock of an output folder for longer than the run would wait
+    /// (`LANECAST_LOCK_WAIT`): nothing was written.
+    Locked {
+        /// The folder, as the output's path names it.
+        folder: PathBuf,
+        /// How long the run waited.
+        waited: std::time::Duration,
+    },
     /// Anything else that is not the user's input: encoder failures, failed comparisons.
     Failed(String),
 }
 
+/// The exit code of [`Error::Locked`]: sysexits' `EX_TEMPFAIL`, a failure that a later retry
+/// may not meet.
+pub const LOCKED_EXIT: i32 = 75;
+
 impl Error {
-    /// The process exit code for this error: 2 for usage and input errors, 1 for I/O and
-    /// other failures. A file that cannot be read is an I/O error whether the command line
-    /// names it (the scene) or the scene does (a mesh).
+    /// The process exit code for this error: 2 for usage and input errors, [`LOCKED_EXIT`]
+    /// (75) for a lock another run held too long, 1 for I/O and other failures. A file that
+    /// cannot be read is an I/O error whether the command line names it (the scene) or the
+    /// scene does (a mesh).
     pub fn exit_code(&self) -> i32 {
         match self {
             Error::Usage(_) | Error::Input { .. } | Error::InputFile { .. } => 2,
+            Error::Locked { .. } => LOCKED_EXIT,
             Error::Io { .. } | Error::IoAt { .. } | Error::Failed(_) => 1,
         }
     }
@@ -130,6 +145,13 @@ impl fmt::Display for Error {
                 "{}:{line}: cannot {action} {}: {source}",
                 file.display(),
                 path.display()
+            ),
+            Error::Locked { folder, waited } => write!(
+                f,
+                "{}: another lanecast run held this output folder's lock for {} s (it replaces \
+                 outputs there one run at a time); nothing written, try again",
+                folder.display(),
+                waited.as_secs_f64()
             ),
             Error::Failed(m) => write!(f, "{m}"),
         }

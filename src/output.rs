@@ -3,6 +3,9 @@
 //! Every file goes to a temporary file in the target's folder (`.{name}.{pid}.{n}.lanecast-tmp`),
 //! is flushed and synced, then renamed onto the target. A failed write removes the temporary
 //! file and leaves any existing target untouched; a missing folder is an error, never created.
+//! Each temporary file is locked by its run while it exists, so that a later run can tell the
+//! files of a killed run (SIGKILL) from a live one's and remove them (the `stale` module); runs
+//! replacing outputs in the same folder take turns under the folder's lock (the `lock` module).
 //!
 //! Interrupts: the command line's `install_interrupt_cleanup` installs a SIGINT/SIGTERM
 //! (Ctrl-C) handler that removes every temporary file created and not yet renamed, then exits
@@ -15,7 +18,6 @@
 //! `OutputSet`: all checked and their temporary files created before any work, all renamed
 //! together at the end (the `set` module).
 
-use std::ffi::OsString;
 use std::fs::{self, File, OpenOptions};
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -31,10 +33,16 @@ use image::codecs::png::{CompressionType, FilterType, PngEncoder};
 
 use crate::{Error, Result};
 
-#[cfg(feature = "cli")]
+mod lock;
+mod npy;
 mod set;
+mod stale;
+use lock::lock_wait;
+use npy::npy_fill;
+pub use npy::{npy_f32, npy_i32, write_npy_f32, write_npy_i32};
 #[cfg(feature = "cli")]
-pub(crate) use set::{OutputKind, OutputSet};
+pub(crate) use set::OutputKind;
+pub(crate) use set::OutputSet;
 
 /// Image formats lanecast writes, chosen by the output file's extension.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -202,9 +210,11 @@ pub(crate) fn install_interrupt_cleanup() {
     });
 }
 
-/// Creates a fresh temporary file next to `path` and registers it for interrupt cleanup;
-/// `create_new` never reuses or follows an existing entry (a stale file from a crashed run with
-/// the same pid just moves us on).
+/// Creates a fresh temporary file next to `path`, locks it (see the `stale` module: the lock,
+/// held as long as the returned file or a clone of it is open, marks it as a live run's) and
+/// registers it for interrupt cleanup. `create_new` never reuses or follows an existing entry
+/// (a stale file from a crashed run with the same pid just moves us on). The caller holds the
+/// folder's lock (`lock::FolderLock`), so no other run looks for stale files meanwhile.
 fn create_temp(path: &Path) -> io::Result<(PathBuf, File)> {
     let name = path
         .file_name()
@@ -214,13 +224,12 @@ fn create_temp(path: &Path) -> io::Result<(PathBuf, File)> {
     let mut list = pending();
     loop {
         let n = TMP_COUNTER.fetch_add(1, Ordering::Relaxed);
-        let mut tmp_name = OsString::from(".");
-        tmp_name.push(name);
-        tmp_name.push(format!(".{}.{n}.lanecast-tmp", std::process::id()));
-        let tmp = dir.join(tmp_name);
+        let tmp = dir.join(stale::temp_name(name, std::process::id(), n));
         match OpenOptions::new().write(true).create_new(true).open(&tmp) {
             Ok(file) => {
                 list.push(tmp.clone());
+                // A file system without locks leaves it unlocked: then never taken for stale.
+                let _ = file.try_lock();
                 return Ok((tmp, file));
             }
             Err(e) if e.kind() == io::ErrorKind::AlreadyExists && attempts < 100 => attempts += 1,
@@ -240,33 +249,15 @@ fn fill_file(
     file.sync_all()
 }
 
-/// Removes a temporary file that will not be renamed, and forgets it.
-fn discard_temp(tmp: &Path) {
-    let mut list = pending();
-    // The file handle is closed by now; removal failing leaves nothing better to do.
-    let _ = fs::remove_file(tmp);
-    unregister(&mut list, tmp);
-}
-
-/// The atomic write, with the content produced by `fill` into a buffered writer.
+/// The atomic write, with the content produced by `fill` into a buffered writer: a set of one
+/// output ([`OutputSet`]).
 fn write_atomic_with(
     path: &Path,
     fill: impl FnOnce(&mut BufWriter<File>) -> io::Result<()>,
 ) -> Result<()> {
-    let fail = |e| Error::io(path, "write output", e);
-    let (tmp, file) = create_temp(path).map_err(fail)?;
-    let result = fill_file(file, fill).and_then(|()| {
-        let mut list = pending();
-        fs::rename(&tmp, path)?;
-        unregister(&mut list, &tmp);
-        Ok(())
-    });
-    if let Err(e) = result {
-        discard_temp(&tmp);
-        return Err(fail(e));
-    }
-    sync_parent(path);
-    Ok(())
+    let mut set = OutputSet::open(&[("output", path)], lock_wait()?)?;
+    set.write_with("output", fill)?;
+    set.commit()
 }
 
 /// Best effort: make the rename itself durable. The output is complete either way.
@@ -285,117 +276,6 @@ fn parent_dir(path: &Path) -> &Path {
         Some(p) if !p.as_os_str().is_empty() => p,
         _ => Path::new("."),
     }
-}
-
-/// The `.npy` (format 1.0) header for a C-order `(height, width)` array of `descr` elements.
-/// Magic, version, u16 length and dict together are padded with spaces to a multiple of 64
-/// bytes and end in `\n`, as NumPy itself writes them.
-fn npy_header(descr: &str, width: usize, height: usize) -> Vec<u8> {
-    let dict =
-        format!("{{'descr': '{descr}', 'fortran_order': False, 'shape': ({height}, {width}), }}");
-    let unpadded = 10 + dict.len() + 1; // magic (6) + version (2) + length (2) + dict + '\n'
-    let total = unpadded.div_ceil(64) * 64;
-    let header_len = (total - 10) as u16; // the dict is < 100 bytes: always fits
-    let mut out = Vec::with_capacity(total);
-    out.extend_from_slice(b"\x93NUMPY\x01\x00");
-    out.extend_from_slice(&header_len.to_le_bytes());
-    out.extend_from_slice(dict.as_bytes());
-    out.resize(total - 1, b' ');
-    out.push(b'\n');
-    out
-}
-
-/// Writes `data` as little-endian 4-byte values, in chunks to bound the staging buffer.
-fn write_le<T: Copy>(w: &mut impl Write, data: &[T], le: impl Fn(T) -> [u8; 4]) -> io::Result<()> {
-    let mut buf = Vec::with_capacity(4 * 16384);
-    for chunk in data.chunks(16384) {
-        buf.clear();
-        buf.extend(chunk.iter().flat_map(|&v| le(v)));
-        w.write_all(&buf)?;
-    }
-    Ok(())
-}
-
-/// A complete `.npy` file for a `height` x `width` array of i32, row-major.
-/// Panics if `data.len() != width * height`.
-pub fn npy_i32(width: u32, height: u32, data: &[i32]) -> Vec<u8> {
-    npy_bytes(
-        "<i4",
-        width as usize,
-        height as usize,
-        data,
-        i32::to_le_bytes,
-    )
-}
-
-/// A complete `.npy` file for a `height` x `width` array of f32, row-major.
-/// Panics if `data.len() != width * height`.
-pub fn npy_f32(width: u32, height: u32, data: &[f32]) -> Vec<u8> {
-    npy_bytes(
-        "<f4",
-        width as usize,
-        height as usize,
-        data,
-        f32::to_le_bytes,
-    )
-}
-
-fn npy_bytes<T: Copy>(
-    descr: &str,
-    w: usize,
-    h: usize,
-    data: &[T],
-    le: impl Fn(T) -> [u8; 4],
-) -> Vec<u8> {
-    assert_eq!(data.len(), w * h, "npy data does not match its shape");
-    let mut out = npy_header(descr, w, h);
-    write_le(&mut out, data, le).expect("writing to a Vec cannot fail");
-    out
-}
-
-/// The writer of a `.npy` file, streamed, never built whole in memory; the shape is checked
-/// before any file is touched.
-fn npy_fill<'a, T: Copy>(
-    path: &Path,
-    descr: &'a str,
-    (width, height): (usize, usize),
-    data: &'a [T],
-    le: impl Fn(T) -> [u8; 4] + 'a,
-) -> Result<impl FnOnce(&mut BufWriter<File>) -> io::Result<()> + 'a> {
-    if width.checked_mul(height) != Some(data.len()) {
-        return Err(Error::Failed(format!(
-            "{}: internal error: {} values for a {width}x{height} array",
-            path.display(),
-            data.len()
-        )));
-    }
-    Ok(move |w: &mut BufWriter<File>| {
-        w.write_all(&npy_header(descr, width, height))?;
-        write_le(w, data, le)
-    })
-}
-
-/// Shared by the `write_npy_*` functions.
-fn write_npy<T: Copy>(
-    path: &Path,
-    descr: &str,
-    shape: (usize, usize),
-    data: &[T],
-    le: impl Fn(T) -> [u8; 4],
-) -> Result<()> {
-    write_atomic_with(path, npy_fill(path, descr, shape, data, le)?)
-}
-
-/// Writes a `height` x `width` i32 array as `.npy`, atomically.
-pub fn write_npy_i32(path: &Path, width: u32, height: u32, data: &[i32]) -> Result<()> {
-    let shape = (width as usize, height as usize);
-    write_npy(path, "<i4", shape, data, i32::to_le_bytes)
-}
-
-/// Writes a `height` x `width` f32 array as `.npy`, atomically.
-pub fn write_npy_f32(path: &Path, width: u32, height: u32, data: &[f32]) -> Result<()> {
-    let shape = (width as usize, height as usize);
-    write_npy(path, "<f4", shape, data, f32::to_le_bytes)
 }
 
 /// True if `a` and `b` name the same file, whether or not it exists yet: existing files are
@@ -500,52 +380,6 @@ mod tests {
                 }
             }
         }
-    }
-
-    #[test]
-    fn npy_header_exact_bytes() {
-        let bytes = npy_i32(3, 2, &[1, -1, 2, 3, 0x0102_0304, 5]);
-        // 10 bytes of preamble + 59 of dict + '\n' = 70: padded to 128.
-        let dict = b"{'descr': '<i4', 'fortran_order': False, 'shape': (2, 3), }";
-        assert_eq!(dict.len(), 59);
-        assert_eq!(&bytes[..8], b"\x93NUMPY\x01\x00");
-        assert_eq!(u16::from_le_bytes([bytes[8], bytes[9]]), 128 - 10);
-        assert_eq!(&bytes[10..69], dict);
-        assert!(bytes[69..127].iter().all(|&b| b == b' '));
-        assert_eq!(bytes[127], b'\n');
-        let data = &bytes[128..];
-        assert_eq!(data.len(), 24);
-        assert_eq!(&data[..8], &[1, 0, 0, 0, 0xFF, 0xFF, 0xFF, 0xFF]);
-        assert_eq!(&data[16..20], &[4, 3, 2, 1]);
-
-        let f = npy_f32(1, 1, &[1.5]);
-        assert_eq!(f.len(), 128 + 4);
-        let text = String::from_utf8_lossy(&f[10..128]);
-        assert!(text.starts_with("{'descr': '<f4', 'fortran_order': False, 'shape': (1, 1), }"));
-        assert_eq!(&f[128..], &1.5f32.to_le_bytes());
-        // Long shapes still pad to a multiple of 64.
-        for (w, h) in [(65_536, 4096), (0, 0), (12345, 1)] {
-            let header = npy_header("<i4", w, h);
-            assert_eq!(header.len() % 64, 0);
-            assert_eq!(*header.last().unwrap(), b'\n');
-            assert_eq!(
-                usize::from(u16::from_le_bytes([header[8], header[9]])),
-                header.len() - 10
-            );
-        }
-    }
-
-    #[test]
-    fn write_npy_files_match_in_memory_encoding() {
-        let dir = TestDir::new("npy");
-        let (ids, depth) = ([7, -1, 3, 9], [1.0, f32::INFINITY, 2.5, 0.125]);
-        let (ids_path, depth_path) = (dir.0.join("ids.npy"), dir.0.join("depth.npy"));
-        write_npy_i32(&ids_path, 2, 2, &ids).unwrap();
-        write_npy_f32(&depth_path, 2, 2, &depth).unwrap();
-        assert_eq!(fs::read(ids_path).unwrap(), npy_i32(2, 2, &ids));
-        assert_eq!(fs::read(depth_path).unwrap(), npy_f32(2, 2, &depth));
-        assert!(write_npy_i32(&dir.0.join("bad.npy"), 3, 2, &ids).is_err());
-        assert_eq!(dir.entries(), ["depth.npy", "ids.npy"]);
     }
 
     #[test]

@@ -23,16 +23,28 @@
 //! their previous files back from those links (or are removed when they did not exist), so a
 //! failure leaves the previous set. Only where hard links are not supported, or a process is
 //! killed (SIGKILL) inside the loop, can a mixed set remain.
+//!
+//! Concurrent runs: the temporary files are created, and the commit (the renames and the folder
+//! syncs) runs, under exclusive locks on the folders of every output ([`FolderLock`]). Two runs
+//! that share an output folder commit one after the other, so the set left is the whole set of
+//! the last to commit, never a mix of both; their renders still run at the same time. Before
+//! creating its temporary files, a set removes the stale ones of killed runs from its folders
+//! (the `stale` module).
+
+// The library writes one file at a time through a set of one; the rest serves the command line.
+#![cfg_attr(not(feature = "cli"), allow(dead_code))]
 
 use std::fs::{self, File};
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
 
+use super::lock::{FolderLock, lock_wait};
 use super::{
     TMP_COUNTER, create_temp, fill_file, image_fill, npy_fill, parent_dir, pending, same_file,
-    sync_parent, unregister,
+    stale, sync_parent, unregister,
 };
 use crate::{Error, Result};
+use std::time::Duration;
 
 /// What an output holds, which decides the extensions its name may end in.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -76,8 +88,11 @@ struct Out {
     flag: &'static str,
     path: PathBuf,
     tmp: PathBuf,
-    /// The open temporary file, until it has been written.
-    file: Option<File>,
+    /// The temporary file, open (and locked) while it exists under its temporary name: its
+    /// lock tells other runs it is not stale. Written through a clone of the handle.
+    hold: File,
+    /// Set once the temporary file has been written.
+    written: bool,
     /// Set once the temporary file has been renamed onto `path`.
     renamed: bool,
 }
@@ -87,6 +102,8 @@ struct Out {
 #[derive(Debug)]
 pub struct OutputSet {
     outs: Vec<Out>,
+    /// How long to wait for the folders' locks ([`lock_wait`]).
+    wait: Duration,
 }
 
 /// The verb phrase of I/O messages about the output of `flag`.
@@ -140,10 +157,7 @@ fn backup(path: &Path) -> Backup {
     };
     for _ in 0..100 {
         let n = TMP_COUNTER.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-        let mut link_name = std::ffi::OsString::from(".");
-        link_name.push(name);
-        link_name.push(format!(".{}.{n}.lanecast-tmp", std::process::id()));
-        let link = parent_dir(path).join(link_name);
+        let link = parent_dir(path).join(stale::temp_name(name, std::process::id(), n));
         match fs::hard_link(path, &link) {
             Ok(()) => return Backup::Link(link),
             Err(e) if e.kind() == io::ErrorKind::AlreadyExists => continue,
@@ -161,14 +175,17 @@ impl OutputSet {
     /// `reads`: (description, path) of every file the run reads that is known before parsing
     /// (the scene: `("the input scene", path)`).
     ///
-    /// In order, so that a usage error is reported before an I/O error: every extension, every
-    /// output against `reads` and against the outputs before it (exit 2), then every target
-    /// (a folder or a non-regular file is refused) and every temporary file (a missing or
-    /// read-only folder fails here, exit 1).
+    /// In order, so that a usage error is reported before an I/O error: the lock wait
+    /// ([`lock_wait`]), every extension, every output against `reads` and against the outputs
+    /// before it (exit 2), then every target (a folder or a non-regular file is refused) and
+    /// every temporary file (a missing or read-only folder fails here, exit 1), created under
+    /// the folders' locks after the folders' stale temporary files are removed (the `stale`
+    /// module; a lock held elsewhere too long: exit 75).
     pub fn create(
         outputs: &[(&'static str, &Path, OutputKind)],
         reads: &[(&str, &Path)],
     ) -> Result<OutputSet> {
+        let wait = lock_wait()?;
         for &(flag, path, kind) in outputs {
             kind.check_extension(flag, path)?;
         }
@@ -184,12 +201,27 @@ impl OutputSet {
                 }
             }
         }
-        for &(flag, path, _) in outputs {
+        let outputs: Vec<(&'static str, &Path)> = outputs.iter().map(|o| (o.0, o.1)).collect();
+        OutputSet::open(&outputs, wait)
+    }
+
+    /// The second half of [`OutputSet::create`], for outputs already checked against each
+    /// other: every target, then the temporary files, under the folders' locks (waiting at most
+    /// `wait` for them).
+    pub(super) fn open(outputs: &[(&'static str, &Path)], wait: Duration) -> Result<OutputSet> {
+        for &(flag, path) in outputs {
             check_target(flag, path)?;
         }
-        let mut set = OutputSet { outs: Vec::new() };
-        for &(flag, path, _) in outputs {
-            let (tmp, file) = create_temp(path).map_err(|e| {
+        let lock = FolderLock::acquire(outputs.iter().map(|o| o.1), wait)?;
+        for folder in lock.folders() {
+            stale::remove_stale(folder);
+        }
+        let mut set = OutputSet {
+            outs: Vec::new(),
+            wait,
+        };
+        for &(flag, path) in outputs {
+            let (tmp, hold) = create_temp(path).map_err(|e| {
                 let dir = parent_dir(path);
                 let e = if dir.is_dir() {
                     e
@@ -205,7 +237,8 @@ impl OutputSet {
                 flag,
                 path: path.to_path_buf(),
                 tmp,
-                file: Some(file),
+                hold,
+                written: false,
                 renamed: false,
             });
         }
@@ -242,13 +275,16 @@ impl OutputSet {
                 "internal error: no output {flag} in the set"
             )));
         };
-        let Some(file) = o.file.take() else {
+        if o.written {
             return Err(Error::Failed(format!(
                 "internal error: {flag} {} written twice",
                 o.path.display()
             )));
-        };
-        fill_file(file, fill).map_err(|e| Error::io(&o.path, action(o.flag), e))
+        }
+        o.written = true;
+        let fail = |e| Error::io(&o.path, action(o.flag), e);
+        // a clone shares the lock, which stays with `hold` when the clone is closed
+        fill_file(o.hold.try_clone().map_err(fail)?, fill).map_err(fail)
     }
 
     /// The path of the output of `flag`.
@@ -294,13 +330,16 @@ impl OutputSet {
     /// Renames every temporary file onto its target, all or none (see the module
     /// documentation). Every output must have been written.
     pub fn commit(mut self) -> Result<()> {
-        if let Some(o) = self.outs.iter().find(|o| o.file.is_some()) {
+        if let Some(o) = self.outs.iter().find(|o| !o.written) {
             return Err(Error::Failed(format!(
                 "internal error: {} {} was never written",
                 o.flag,
                 o.path.display()
             )));
         }
+        // Runs replacing outputs in the same folders commit one at a time (the `lock` module);
+        // taken before the registry, so that an interrupt while waiting ends the run at once.
+        let lock = FolderLock::acquire(self.outs.iter().map(|o| o.path.as_path()), self.wait)?;
         // Held across the whole loop: an interrupt waits for it (see the module docs).
         let mut list = pending();
         let backups: Vec<Backup> = self.outs.iter().map(|o| backup(&o.path)).collect();
@@ -339,6 +378,7 @@ impl OutputSet {
                 synced.push(dir);
             }
         }
+        drop(lock);
         Ok(())
     }
 }
@@ -366,7 +406,7 @@ impl Drop for OutputSet {
         let mut list = pending();
         for o in &mut self.outs {
             if !o.renamed {
-                drop(o.file.take());
+                // removed before `hold` closes: never unlocked under its temporary name
                 let _ = fs::remove_file(&o.tmp);
                 unregister(&mut list, &o.tmp);
             }
@@ -375,155 +415,4 @@ impl Drop for OutputSet {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::output::tests::TestDir;
-
-    #[test]
-    fn extensions_follow_what_is_written() {
-        let ok = [
-            (OutputKind::Image, "a.png"),
-            (OutputKind::Image, "a.BMP"),
-            (OutputKind::Npy, "x/ids.NPY"),
-            (OutputKind::Json, "s.json"),
-        ];
-        for (kind, name) in ok {
-            kind.check_extension("--f", Path::new(name)).unwrap();
-        }
-        for (kind, name, want) in [
-            (OutputKind::Npy, "x.png", ".npy"),
-            (OutputKind::Npy, "x", ".npy"),
-            (OutputKind::Json, "s.npy", ".json"),
-            (OutputKind::Image, "i.npy", ".png"),
-            (OutputKind::Image, "i.jpg", ".bmp"),
-        ] {
-            let e = kind.check_extension("--f", Path::new(name)).unwrap_err();
-            assert_eq!(e.exit_code(), 2);
-            let msg = e.to_string();
-            assert!(msg.starts_with(&format!("--f {name}: ")), "{msg}");
-            assert!(msg.contains(want), "{msg}");
-        }
-    }
-
-    #[test]
-    fn writes_nothing_until_commit_and_all_at_commit() {
-        let dir = TestDir::new("commit");
-        let (a, b) = (dir.0.join("a.npy"), dir.0.join("b.json"));
-        fs::write(&a, b"old a").unwrap();
-        let outs = [
-            ("--ids", a.as_path(), OutputKind::Npy),
-            ("--stats", b.as_path(), OutputKind::Json),
-        ];
-        let mut set = OutputSet::create(&outs, &[]).unwrap();
-        assert_eq!(dir.entries().len(), 3, "{:?}", dir.entries());
-        set.write_npy_i32("--ids", 2, 1, &[1, 2]).unwrap();
-        set.write_bytes("--stats", b"{}").unwrap();
-        assert_eq!(fs::read(&a).unwrap(), b"old a");
-        assert!(!b.exists());
-        set.commit().unwrap();
-        assert_eq!(fs::read(&a).unwrap(), super::super::npy_i32(2, 1, &[1, 2]));
-        assert_eq!(fs::read(&b).unwrap(), b"{}");
-        assert_eq!(dir.entries(), ["a.npy", "b.json"]);
-        let list = pending();
-        assert!(!list.iter().any(|p| p.starts_with(&dir.0)), "{list:?}");
-    }
-
-    #[test]
-    fn dropped_or_unfinished_set_leaves_previous_files() {
-        let dir = TestDir::new("drop");
-        let (a, b) = (dir.0.join("a.png"), dir.0.join("b.npy"));
-        fs::write(&a, b"old a").unwrap();
-        fs::write(&b, b"old b").unwrap();
-        let outs = [
-            ("--output", a.as_path(), OutputKind::Image),
-            ("--depth", b.as_path(), OutputKind::Npy),
-        ];
-        let mut set = OutputSet::create(&outs, &[]).unwrap();
-        set.write_image("--output", 1, 1, &[1, 2, 3]).unwrap();
-        drop(set);
-        assert_eq!(dir.entries(), ["a.png", "b.npy"]);
-        // One output never written: commit refuses, nothing renamed.
-        let mut set = OutputSet::create(&outs, &[]).unwrap();
-        set.write_image("--output", 1, 1, &[1, 2, 3]).unwrap();
-        assert!(matches!(set.commit(), Err(Error::Failed(_))));
-        assert_eq!(fs::read(&a).unwrap(), b"old a");
-        assert_eq!(fs::read(&b).unwrap(), b"old b");
-        assert_eq!(dir.entries(), ["a.png", "b.npy"]);
-    }
-
-    #[test]
-    fn a_failed_rename_puts_back_the_outputs_already_renamed() {
-        let dir = TestDir::new("rollback");
-        let (a, b, c) = (
-            dir.0.join("a.npy"),
-            dir.0.join("b.npy"),
-            dir.0.join("c.json"),
-        );
-        fs::write(&a, b"old a").unwrap();
-        let outs = [
-            ("--ids", a.as_path(), OutputKind::Npy),
-            ("--depth", b.as_path(), OutputKind::Npy),
-            ("--stats", c.as_path(), OutputKind::Json),
-        ];
-        let mut set = OutputSet::create(&outs, &[]).unwrap();
-        for flag in ["--ids", "--depth", "--stats"] {
-            set.write_bytes(flag, b"new").unwrap();
-        }
-        // The third target turns into a folder after the checks: its rename fails.
-        fs::create_dir(&c).unwrap();
-        fs::write(c.join("keep"), b"k").unwrap();
-        let e = set.commit().unwrap_err();
-        assert_eq!(e.exit_code(), 1);
-        assert!(e.to_string().contains("c.json"), "{e}");
-        assert_eq!(fs::read(&a).unwrap(), b"old a");
-        assert!(!b.exists(), "b did not exist before");
-        assert_eq!(fs::read(c.join("keep")).unwrap(), b"k");
-        assert_eq!(dir.entries(), ["a.npy", "c.json"]);
-    }
-
-    #[test]
-    fn refuses_reads_each_other_folders_and_missing_folders_before_touching_anything() {
-        let dir = TestDir::new("refuse");
-        let scene = dir.0.join("s.sc");
-        fs::write(&scene, b"scene").unwrap();
-        let a = dir.0.join("a.npy");
-        let same = dir.0.join(".").join("a.npy");
-        let reads = [("the input scene", scene.as_path())];
-        let e = OutputSet::create(
-            &[
-                ("--ids", a.as_path(), OutputKind::Npy),
-                ("--depth", same.as_path(), OutputKind::Npy),
-            ],
-            &reads,
-        )
-        .unwrap_err();
-        assert_eq!(e.exit_code(), 2);
-        assert!(e.to_string().contains("--depth") && e.to_string().contains("--ids"));
-        let folder = dir.0.join("f.png");
-        fs::create_dir(&folder).unwrap();
-        let missing = dir.0.join("nope").join("x.json");
-        for (flag, path, kind) in [
-            ("--output", folder.as_path(), OutputKind::Image),
-            ("--stats", missing.as_path(), OutputKind::Json),
-        ] {
-            let e = OutputSet::create(
-                &[("--ids", a.as_path(), OutputKind::Npy), (flag, path, kind)],
-                &reads,
-            )
-            .unwrap_err();
-            assert_eq!(e.exit_code(), 1, "{e}");
-            assert!(e.to_string().contains(flag), "{e}");
-        }
-        // A mesh read after creation.
-        let mesh = dir.0.join("m.npy");
-        fs::write(&mesh, b"mesh").unwrap();
-        let set = OutputSet::create(&[("--ids", mesh.as_path(), OutputKind::Npy)], &reads).unwrap();
-        let e = set
-            .check_reads(&[("the mesh m.npy".into(), dir.0.join(".").join("m.npy"))])
-            .unwrap_err();
-        assert!(e.to_string().contains("the mesh m.npy"), "{e}");
-        drop(set);
-        assert_eq!(fs::read(&mesh).unwrap(), b"mesh");
-        assert_eq!(dir.entries(), ["f.png", "m.npy", "s.sc"]);
-    }
-}
+mod tests;
