@@ -109,7 +109,7 @@ impl PacketScene {
         match accel.resolve(scene.shapes.len()) {
             Accel::Bvh => {
                 let prepared = Prepared::new(scene, eye);
-                let (bvh, reordered) = Bvh::new(&prepared, scene, eye);
+                let (bvh, reordered) = Bvh::new(&prepared, scene, camera);
                 PacketScene {
                     packed: Packed::new(&reordered),
                     bvh: Some(bvh),
