@@ -336,7 +336,7 @@ pub(crate) fn packet_blocks<const BW: usize>(
                         if suspect != 0 {
                             let winner = |id| tiles.winner_in_packet(&p.packed, &lists, k, id);
                             let ids = hit.id;
-                            pending.push(r.pending((bx, by), (suspect, carried), ids, winner));
+                            pending.push(r.pending((bx, by), suspect, ids, winner));
                         }
                         store((ids, depth), rows, bx, by, hit);
                     });
