@@ -1,16 +1,26 @@
 //! BVH construction: binned surface area heuristic (Wald, "On fast Construction of SAH-based
 //! Bounding Volume Hierarchies", 2007) over primitive boxes relative to the eye, in f64.
 //!
-//! Boxes are conservative for what the leaf kernels can hit: each primitive's box is padded by
-//! [`PAD_REL`] of its distance from the eye (covering the polygons' 8u edge tolerance, the
-//! rounding of ray directions and of the f32 slab test), and rounded outward to f32.
+//! Boxes are conservative for what the leaf kernels can hit, seen by one camera: each
+//! primitive's box holds, for every ray of the camera's pixels that a kernel (f32 or f64) may
+//! accept on it, a point of that ray no farther than any distance the kernel returns there,
+//! with a margin of 4u of that distance in every axis ([`reach_box`], `reach::sphere_cap`).
+//! The traversal's slab test, which errs by 2u of a distance, then enters every box on the
+//! way to the primitive no later than the primitive's hit, and the BVH finds what `--accel
+//! none` finds, bit for bit. The primitive's own box (padded by [`PAD_REL`]) is kept in the
+//! union for the SAH: alone it is not conservative, since a kernel accepts rays up to `E`
+//! (`accel::reach`) outside a polygon's edges, over a strip across the image for a sliver seen
+//! nearly edge-on. Rounded outward to f32 in `bvh.rs`.
 
+use super::reach::{View, sphere_cap};
+use crate::kernel::polygon::PolyK;
 use crate::soa::{Group, Prepared};
 use glam::DVec3;
+use rayon::prelude::*;
 
-/// Box padding, relative to the largest eye-relative coordinate magnitude of the box: 2e-6 is
-/// about 33u_f32; the polygons' edge tolerance widens them by 8u radians (8u of distance), the
-/// ray directions err by ~3u and the slab test by ~3u.
+/// Padding of a primitive's own box, relative to the largest eye-relative coordinate magnitude
+/// of the box (about 33u): it keeps the box of a flat primitive from being flat. Correctness
+/// rests on the reach boxes, not on it.
 pub const PAD_REL: f64 = 2e-6;
 /// Most primitives in a leaf.
 pub const MAX_LEAF: usize = 4;
@@ -98,34 +108,75 @@ struct Item {
     tag: (u8, u32),
 }
 
-/// Eye-relative, padded boxes of every prepared primitive, from the scene's shapes.
-pub fn boxes<T>(
-    p: &Prepared<T>,
+/// Eye-relative boxes of every prepared primitive seen by `view`: each the primitive's own box
+/// padded ([`Aabb::padded`]), grown to hold its reach ([`reach_box`]).
+pub fn boxes(
+    p: &Prepared<f64>,
     shapes: &crate::scene::Shapes,
-    eye: DVec3,
+    view: &View,
 ) -> Vec<(Aabb, (u8, u32))> {
     use crate::scene::Shape;
-    let mut out = Vec::with_capacity(p.spheres.len() + p.triangles.len() + p.quads.len());
-    let mut add = |tag: u8, g_ids: &[i32]| {
-        for (i, &id) in g_ids.iter().enumerate() {
-            let b = match shapes.get(id as usize) {
-                Shape::Sphere { center, radius } => {
-                    let c = center - eye;
-                    Aabb {
-                        min: c - DVec3::splat(radius),
-                        max: c + DVec3::splat(radius),
-                    }
-                }
-                Shape::Triangle(v) => Aabb::of_points(&v.map(|p| p - eye)),
-                Shape::Quad(v) => Aabb::of_points(&v.map(|p| p - eye)),
-            };
-            out.push((b.padded(), (tag, i as u32)));
+    let own = |id: i32| match shapes.get(id as usize) {
+        Shape::Sphere { center, radius } => {
+            let c = center - view.eye;
+            Aabb {
+                min: c - DVec3::splat(radius),
+                max: c + DVec3::splat(radius),
+            }
         }
+        Shape::Triangle(v) => Aabb::of_points(&v.map(|p| p - view.eye)),
+        Shape::Quad(v) => Aabb::of_points(&v.map(|p| p - view.eye)),
     };
-    add(SPHERE, &p.spheres.id);
-    add(TRIANGLE, &p.triangles.id);
-    add(QUAD, &p.quads.id);
+    let spheres = p
+        .spheres
+        .k
+        .par_iter()
+        .zip(&p.spheres.id)
+        .enumerate()
+        .map(|(i, (k, &id))| {
+            let k = k.cast::<f32>();
+            let (min, max) = sphere_cap(k.oc, k.r2, k.c);
+            (
+                own(id).padded().union(Aabb { min, max }),
+                (SPHERE, i as u32),
+            )
+        });
+    let mut out: Vec<_> = spheres.collect();
+    out.par_extend(polygon_boxes(&p.triangles, view, TRIANGLE, &own));
+    out.par_extend(polygon_boxes(&p.quads, view, QUAD, &own));
     out
+}
+
+/// [`boxes`] of one kind of polygon (`tag`).
+fn polygon_boxes<'a, const N: usize>(
+    g: &'a Group<PolyK<f64, N>>,
+    view: &'a View,
+    tag: u8,
+    own: &'a (impl Fn(i32) -> Aabb + Sync),
+) -> impl IndexedParallelIterator<Item = (Aabb, (u8, u32))> + 'a {
+    g.k.par_iter()
+        .zip(&g.id)
+        .enumerate()
+        .map(move |(i, (k, &id))| {
+            (
+                own(id).padded().union(reach_box(&k.cast(), view)),
+                (tag, i as u32),
+            )
+        })
+}
+
+/// A box holding, for every ray a kernel may accept on the polygon of f32 constants `k`, the
+/// point at a distance no greater than any it returns there, with a margin for the slab
+/// test's rounding (`View::polygon_slice`); empty when no pixel's ray reaches it. With every
+/// ancestor's box holding it, the traversal enters each node on the way to the primitive no
+/// later than the primitive's hit: the BVH finds every hit `none` finds. The polygon's own box
+/// is not enough: the rays a kernel accepts on a sliver seen nearly edge-on form a strip
+/// across the image (`accel::reach`).
+pub(crate) fn reach_box<const N: usize>(k: &PolyK<f32, N>, view: &View) -> Aabb {
+    let region = view.polygon_region(&k.n, k.nrm);
+    let near = view.polygon_near(&region, k.nrm, k.p);
+    view.polygon_slice(&region, near)
+        .map_or(Aabb::EMPTY, |(min, max)| Aabb { min, max })
 }
 
 /// Builds the hierarchy over `boxes`.

@@ -2,20 +2,22 @@
 //!
 //! Nodes are 32 bytes, depth first: an inner node's left child follows it, its right child is at
 //! `index`; a leaf's `index` names its ranges in the reordered SoA stores. Boxes are f32, rounded
-//! outward from the padded f64 boxes of `build.rs`, eye-relative (the eye is the origin of
-//! every ray, so the slab test needs no origin terms).
+//! outward from the f64 boxes of `build.rs` (each holding a point of every ray its primitive's
+//! kernels may accept, no farther than their hit, with a margin), eye-relative (the eye is the
+//! origin of every ray, so the slab test needs no origin terms).
 //!
 //! Traversal (one 8-ray packet): slab test of all lanes against a node's box (Kay and Kajiya
 //! 1986, with the origin at 0: `t = bound * (1/d)`); the node is entered when any lane enters the
 //! box no later than its nearest hit so far (`<=`, so an exactly tied primitive with a lower id
 //! is still found). Children are visited near first along the split axis, by the sign of lane
 //! 0's direction. Direction components below 1e-30 in magnitude are replaced by +-1e-30 before
-//! inverting, so `0 * inf` (NaN) never occurs; the boxes' padding covers that change.
+//! inverting, so `0 * inf` (NaN) never occurs; the boxes' margin covers that change.
 //!
 //! One traversal loop (`walk`) serves three forms: 8 f32 rays (the packet kernel), 4 f64 rays
 //! (the f64x4 method) and one ray in f32 or f64 (the scalar kernels, the oracle among them).
 
 use super::build::{self, Built};
+use crate::camera::Camera;
 use crate::kernel::lanes::Lanes;
 use crate::kernel::methods::wide64::{Hit4d, polygon_x4d, sphere_x4d};
 use crate::kernel::packet::{polygons_x8, spheres_x8};
@@ -25,7 +27,6 @@ use crate::kernel::{Hit, Hit8, HitLanes};
 use crate::real::{Real, V3, f32_down, f32_up};
 use crate::scene::Scene;
 use crate::soa::{Packed, Prepared, Records};
-use glam::DVec3;
 use wide::{f32x8, f64x4};
 
 /// One node: box, child or leaf index, and kind (bit 31: leaf; bits 0-1: split axis).
@@ -49,10 +50,12 @@ pub struct Bvh {
 }
 
 impl Bvh {
-    /// Builds the BVH over `prepared` (the primitives of `scene` seen from `eye`) and returns it
-    /// with the primitives reordered leaf by leaf, as the traversal expects them packed.
-    pub fn new(prepared: &Prepared<f64>, scene: &Scene, eye: DVec3) -> (Bvh, Prepared<f64>) {
-        let built: Built = build::build(build::boxes(prepared, &scene.shapes, eye));
+    /// Builds the BVH over `prepared` (the primitives of `scene` seen by `camera`, whose eye
+    /// the boxes are relative to and whose pixels' rays they are sized for) and returns it with
+    /// the primitives reordered leaf by leaf, as the traversal expects them packed.
+    pub fn new(prepared: &Prepared<f64>, scene: &Scene, camera: &Camera) -> (Bvh, Prepared<f64>) {
+        let view = super::reach::View::new(camera);
+        let built: Built = build::build(build::boxes(prepared, &scene.shapes, &view));
         let (reordered, leaves) = build::reorder(prepared, &built);
         let nodes = built
             .nodes
@@ -187,9 +190,9 @@ fn walk_lanes<L: Lanes>(
 
 /// Nearest hits of four f64 rays `d` among the primitives of `p` (in `bvh`'s leaf order), with
 /// the default kernels in f64x4 lanes (`kernel::methods::wide64`, each lane the oracle's
-/// `polygon_x1::<f64>` / `sphere_x1::<f64>` bit for bit). The f64 kernels accept rays within a
-/// far smaller edge tolerance than the f32 ones the padding was sized for, and the slab test
-/// in f64 errs less than in f32, so every box still contains every hit it must.
+/// `polygon_x1::<f64>` / `sphere_x1::<f64>` bit for bit). The boxes are sized for the f64
+/// kernels' rays and distances too (`build.rs`), and the slab test in f64 errs less than in
+/// f32.
 #[inline]
 pub fn trace_bvh_x4d(p: &impl Records<f64>, bvh: &Bvh, d: &[f64x4; 3], hit: &mut Hit4d) {
     walk_lanes(bvh, d, hit, |leaf, h| {
@@ -238,9 +241,9 @@ fn polygons_x4d<const N: usize>(
 /// Nearest hit of one ray `d` among the primitives of `p` (in `bvh`'s leaf order) with the
 /// scalar kernels in precision `T`: the oracle in f64, `scalar-f32` in f32. The slab test runs
 /// in f64 for both (an f32 direction and f32 distances are exact in f64), which errs less than
-/// the f32 slab test the padding covers; the f32 scalar kernel is the packet kernel's formula
-/// in one lane, and the f64 kernel's hits lie closer to the primitives than the f32 ones.
-/// Proven against `--accel none`, bit for bit, by tests/accel.rs.
+/// the f32 slab test the boxes' margin covers; the f32 scalar kernel is the packet kernel's
+/// formula in one lane, and the boxes are sized for the f64 kernels too (`build.rs`). Proven
+/// against `--accel none`, bit for bit, by tests/accel.rs and tests/accel_random.rs.
 #[inline]
 pub fn trace_bvh_x1<T: Real>(p: &impl Records<T>, bvh: &Bvh, d: V3<T>) -> Hit<T> {
     let d64 = d.map(|c| c.to_f64());
@@ -273,6 +276,7 @@ pub fn trace_bvh_x1<T: Real>(p: &impl Records<T>, bvh: &Bvh, d: V3<T>) -> Hit<T>
 mod tests {
     use super::*;
     use crate::scene::{CameraSpec, Shape};
+    use glam::DVec3;
 
     /// The traversal stack holds at most one node per level: the build's depth must stay
     /// below `STACK`, here on 20,000 tiny triangles packed along a line (a skewed tree).
@@ -297,7 +301,8 @@ mod tests {
             warnings: Vec::new(),
         };
         let prepared = Prepared::new(&scene, DVec3::ZERO);
-        let (bvh, _) = Bvh::new(&prepared, &scene, DVec3::ZERO);
+        let camera = Camera::new(&scene.camera, 60.0, 64, 48);
+        let (bvh, _) = Bvh::new(&prepared, &scene, &camera);
         let depth = bvh.depth();
         assert!(depth > 10 && depth < STACK, "depth {depth}");
     }

@@ -1,28 +1,23 @@
-//! Where a primitive can appear on screen, for the tiles (`tiles.rs`, whose module comment
-//! derives every bound used here): the screen geometry, a primitive's conservative pixel
-//! rectangle and its `near` distance bound, and the centre rays of each tile's packets
-//! ([`PacketCones`]), which leave out of a tile's entry the packets none of whose rays the
-//! kernel can accept.
+//! Where a primitive can appear on screen, for the tiles (`tiles.rs`): the screen geometry, a
+//! primitive's pixel rectangle and `near` bound from the kernels' written error bound
+//! (`accel::reach`), and the centre rays of each tile's packets ([`PacketCones`]), which leave
+//! out of a tile's entry the packets none of whose rays the kernel can accept.
 
+use super::reach::{Region, View, sphere_near};
 use super::tiles::{TILE_H, TILE_W};
 use crate::camera::Camera;
+use crate::kernel::polygon::PolyK;
 use glam::DVec3;
 
 use crate::real::U32;
-/// Multiple of `u k` taken off a polygon's distance bound (derived: 24; see the module comment).
-pub(super) const GRAZING_U: f64 = 64.0;
-/// Relative margin taken off every polygon's `near` on top of the derived bounds.
-pub(super) const POLYGON_MARGIN: f64 = 1e-5;
-/// Relative margin taken off a sphere's `|oc| - r` (derived: 7e-4; see the module comment).
-pub(super) const SPHERE_MARGIN: f64 = 2e-3;
 /// A point closer to the eye's plane than this fraction of its distance makes a primitive's
 /// projection unbounded: it gets the whole image.
 pub(super) const NEAR_PLANE_REL: f64 = 1e-6;
 /// Points this far behind the eye's plane (relative to their distance: a sine) cannot be hit
 /// by a forward ray: ~1e3 times the kernels' angular tolerance.
 pub(super) const BEHIND_REL: f64 = 1e-3;
-/// Angular margin around every primitive, radians: twice (8u edge tolerance + 8u ray error;
-/// `Screen` takes more where `Camera::direction_error` exceeds 8u).
+/// Angular margin of the packets' cones ([`PacketCones`]), radians: twice (8u edge tolerance +
+/// 8u ray error), more where `Camera::direction_error` exceeds 8u.
 pub(super) const ANGLE_MARGIN: f64 = 32.0 * U32;
 /// Margin of a projected point, pixels, for the f64 rounding of the projection itself (a few
 /// units of 1e-16 relative to coordinates of at most ~1e9 pixels in front of the near plane:
@@ -31,65 +26,52 @@ pub(super) const PROJECTION_PX: f64 = 1e-3;
 
 /// The screen geometry a footprint is measured in.
 pub(super) struct Screen {
-    pub(super) eye: DVec3,
-    pub(super) f: DVec3,
-    pub(super) r: DVec3,
-    pub(super) u: DVec3,
-    half_w: f64,
-    half_h: f64,
+    pub(super) view: View,
     w: f64,
     h: f64,
-    /// Margin in pixels (x, y).
-    margin: (f64, f64),
 }
 
 impl Screen {
     pub(super) fn new(c: &Camera) -> Screen {
-        let stretch = 1.0 + c.half_w * c.half_w + c.half_h * c.half_h;
-        let (w, h) = (c.width as f64, c.height as f64);
-        // twice (edge tolerance + this camera's ray error): 32u up to ~110 degrees of field of
-        // view, more beyond, where the f32 screen tables' rounding grows with `half_w`
-        let eps = f64::from(crate::kernel::edge_eps::<f32>());
-        let angle = ANGLE_MARGIN.max(2.0 * (eps + c.direction_error()));
-        let px = |half: f64, n: f64| angle * stretch / (2.0 * half / n) + PROJECTION_PX;
         Screen {
-            eye: c.eye,
-            f: c.f,
-            r: c.r,
-            u: c.u,
-            half_w: c.half_w,
-            half_h: c.half_h,
-            w,
-            h,
-            margin: (px(c.half_w, w), px(c.half_h, h)),
+            view: View::new(c),
+            w: c.width as f64,
+            h: c.height as f64,
         }
+    }
+
+    /// Pixel coordinates (pixel x at coordinate x) of screen coordinates `(sx, sy)`:
+    /// `camera.rs` inverted.
+    fn pixel(&self, (sx, sy): (f64, f64)) -> (f64, f64) {
+        let v = &self.view;
+        (
+            (sx / v.half_w + 1.0) * self.w / 2.0 - 0.5,
+            (1.0 - sy / v.half_h) * self.h / 2.0 - 0.5,
+        )
     }
 
     /// Pixel coordinates of eye-relative point `q`, or `None` when it is not safely in front.
     pub(super) fn project(&self, q: DVec3) -> Option<(f64, f64)> {
-        let z = q.dot(self.f);
+        let v = &self.view;
+        let z = q.dot(v.f);
         // written so that a NaN is "not in front"
         #[allow(clippy::neg_cmp_op_on_partial_ord)]
         if !(z > NEAR_PLANE_REL * q.length()) {
             return None;
         }
-        let (sx, sy) = (q.dot(self.r) / z, q.dot(self.u) / z);
-        Some((
-            (sx / self.half_w + 1.0) * self.w / 2.0 - 0.5,
-            (1.0 - sy / self.half_h) * self.h / 2.0 - 0.5,
-        ))
+        Some(self.pixel((q.dot(v.r) / z, q.dot(v.u) / z)))
     }
 
-    /// The pixel rectangle (inclusive, clipped) covering the projections of `points` with the
-    /// margin; the whole image when a point is not in front; `None` when off screen or when
-    /// every point is clearly behind the eye (`BEHIND_REL`: no forward ray, widened by the
-    /// kernels' tolerance, reaches the convex hull of such points).
+    /// The pixel rectangle (inclusive, clipped) covering the projections of `points`; the
+    /// whole image when a point is not in front; `None` when off screen or when every point is
+    /// clearly behind the eye (`BEHIND_REL`: no forward ray reaches the convex hull of such
+    /// points).
     pub(super) fn rect(&self, points: impl Iterator<Item = DVec3>) -> Option<[u16; 4]> {
         let (mut x0, mut y0) = (f64::INFINITY, f64::INFINITY);
         let (mut x1, mut y1) = (f64::NEG_INFINITY, f64::NEG_INFINITY);
         let (mut unbounded, mut all_behind) = (false, true);
         for q in points {
-            all_behind &= q.dot(self.f) < -BEHIND_REL * q.length();
+            all_behind &= q.dot(self.view.f) < -BEHIND_REL * q.length();
             match self.project(q) {
                 Some((x, y)) => (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y)),
                 None => unbounded = true,
@@ -101,22 +83,28 @@ impl Screen {
         if unbounded {
             return Some(self.whole());
         }
-        // the pixels whose centres (pixel x at coordinate x) lie within the margin
-        let (mx, my) = self.margin;
-        let (x0, x1) = (
-            (x0 - mx).ceil().max(0.0),
-            (x1 + mx).floor().min(self.w - 1.0),
-        );
-        let (y0, y1) = (
-            (y0 - my).ceil().max(0.0),
-            (y1 + my).floor().min(self.h - 1.0),
-        );
-        // NaN compares false: a NaN rectangle is treated as off screen only if the comparisons
-        // say so; guard explicitly so a NaN gives the whole image instead.
+        self.pixels([x0, y0, x1, y1])
+    }
+
+    /// The pixels (inclusive, clipped) whose centres lie in the box `[x0, y0, x1, y1]` of pixel
+    /// coordinates, widened by [`PROJECTION_PX`]; `None` when none does. A NaN box gives the
+    /// whole image.
+    fn pixels(&self, [x0, y0, x1, y1]: [f64; 4]) -> Option<[u16; 4]> {
+        let m = PROJECTION_PX;
+        let (x0, x1) = ((x0 - m).ceil().max(0.0), (x1 + m).floor().min(self.w - 1.0));
+        let (y0, y1) = ((y0 - m).ceil().max(0.0), (y1 + m).floor().min(self.h - 1.0));
         if x0.is_nan() || x1.is_nan() || y0.is_nan() || y1.is_nan() {
             return Some(self.whole());
         }
         (x0 <= x1 && y0 <= y1).then_some([x0 as u16, y0 as u16, x1 as u16, y1 as u16])
+    }
+
+    /// The pixels of a screen region (`accel::reach`), `None` when it holds none.
+    pub(super) fn region_pixels(&self, region: &Region) -> Option<[u16; 4]> {
+        let [sx0, sy0, sx1, sy1] = region.bounds()?;
+        // y grows downwards: the top row has the largest sy
+        let ((x0, y0), (x1, y1)) = (self.pixel((sx0, sy1)), self.pixel((sx1, sy0)));
+        self.pixels([x0, y0, x1, y1])
     }
 
     pub(super) fn whole(&self) -> [u16; 4] {
@@ -129,59 +117,39 @@ pub(super) fn near_f32(near: f64) -> f32 {
     crate::real::f32_down(near.max(0.0))
 }
 
-/// The rectangle and `near` of a convex polygon (see the module comment).
-/// `p` is the kernel's own plane distance (the f32 constant of its packed store).
+/// The rectangle and `near` of a convex polygon of f32 constants `k` (its packed store's): the
+/// pixels of its screen region and the region's distance bound (`accel::reach`).
 pub(super) fn polygon_footprint<const N: usize>(
     screen: &Screen,
-    v: &[DVec3; N],
-    p: f32,
+    k: &PolyK<f32, N>,
 ) -> (Option<[u16; 4]>, f64) {
-    let q = v.map(|p| p - screen.eye);
-    let rect = screen.rect(q.iter().copied());
-    let p = p as f64;
-    // D: distance from the eye to the polygon (a quad as triangles ABC and ACD), degraded by
-    // the grazing factor k = dmax / p (module comment); the plane bound holds at any angle.
-    let d = (1..N - 1)
-        .map(|i| closest_to_origin(q[0], q[i], q[i + 1]).length())
-        .fold(f64::INFINITY, f64::min);
-    let k = q.iter().map(|v| v.length()).fold(0.0, f64::max) / p;
-    let by_plane = p * (1.0 - 8.0 * U32);
-    let by_distance = d * (1.0 - GRAZING_U * U32 * k);
-    (rect, by_plane.max(by_distance) * (1.0 - POLYGON_MARGIN))
+    let region = screen.view.polygon_region(&k.n, k.nrm);
+    let near = screen.view.polygon_near(&region, k.nrm, k.p);
+    (screen.region_pixels(&region), near)
 }
 
-/// The point of triangle (a, b, c) closest to the origin: Ericson, "Real-Time Collision
-/// Detection" (2005), 5.1.5, by Voronoi regions of the vertices, edges and face (f64).
-fn closest_to_origin(a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
-    let (ab, ac, ap) = (b - a, c - a, -a);
-    let (d1, d2) = (ab.dot(ap), ac.dot(ap));
-    if d1 <= 0.0 && d2 <= 0.0 {
-        return a;
-    }
-    let bp = -b;
-    let (d3, d4) = (ab.dot(bp), ac.dot(bp));
-    if d3 >= 0.0 && d4 <= d3 {
-        return b;
-    }
-    let vc = d1 * d4 - d3 * d2;
-    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
-        return a + ab * (d1 / (d1 - d3));
-    }
-    let cp = -c;
-    let (d5, d6) = (ab.dot(cp), ac.dot(cp));
-    if d6 >= 0.0 && d5 <= d6 {
-        return c;
-    }
-    let vb = d5 * d2 - d1 * d6;
-    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
-        return a + ac * (d2 / (d2 - d6));
-    }
-    let va = d3 * d6 - d5 * d4;
-    if va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0 {
-        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-    }
-    let denom = 1.0 / (va + vb + vc);
-    a + ab * (vb * denom) + ac * (vc * denom)
+/// The rectangle and `near` of the sphere (`center`, `radius`) whose f32 constants are `oc`,
+/// `r2` and `c`: the projection of the cube about its centre of half size `r'`
+/// (`View::sphere_reach`: every ray a kernel accepts passes within it of the centre), the
+/// whole image when the eye is within `r'`; and [`sphere_near`].
+pub(super) fn sphere_footprint(
+    screen: &Screen,
+    (center, radius): (DVec3, f64),
+    (oc32, r2, c): ([f32; 3], f32, f32),
+) -> (Option<[u16; 4]>, f64) {
+    let v = &screen.view;
+    let oc = center - v.eye;
+    let r = v.sphere_reach(oc, radius);
+    let rect = if oc.length() <= r {
+        Some(screen.whole())
+    } else {
+        let corners = (0..8).map(|i| {
+            let s = |bit: usize| if i >> bit & 1 == 1 { r } else { -r };
+            oc + v.r * s(0) + v.u * s(1) + v.f * s(2)
+        });
+        screen.rect(corners)
+    };
+    (rect, sphere_near(oc32, r2, c))
 }
 
 /// The 4x2 packets of the image, for leaving out of a tile entry's packets those whose rays

@@ -22,6 +22,7 @@
 pub(crate) mod build;
 pub(crate) mod bvh;
 pub(crate) mod footprint;
+pub(crate) mod reach;
 pub(crate) mod tiles;
 
 pub(crate) use bvh::Bvh;

@@ -4,29 +4,28 @@
 //! All rays start at the eye, and the polygon kernel already tests a ray against the planes
 //! through the eye and each edge: the 3D edge functions of a rasterizer (Davidovič, Engelhardt,
 //! Georgiev, Slusallek, Hachisuka, "3D Rasterization: a bridge between rasterization and ray
-//! casting", Graphics Interface 2012). So a primitive's pixels can be bounded in setup:
+//! casting", Graphics Interface 2012). So a primitive's pixels can be bounded in setup, from a
+//! written bound on the kernels' error (`accel::reach`, which derives it):
 //!
-//! - Projection. A point `q` (eye-relative) lies on pixel coordinates
-//!   `x = (sx / half_w + 1) W/2 - 1/2`, `y = (1 - sy / half_h) H/2 - 1/2`, with
-//!   `sx = q.r / q.f`, `sy = q.u / q.f` (`camera.rs` inverted: pixel x's ray has that sx).
-//!   A convex polygon entirely in front of the eye projects inside the box of its projected
-//!   vertices; a sphere inside the box of its camera-aligned bounding cube's 8 corners.
-//! - Margin. The kernels accept rays up to `edge_eps` = 8u radians outside an edge plane, and
-//!   the f32 ray directions err by up to `Camera::direction_error` (about 7u at 60 degrees;
-//!   the f32 screen tables' part grows with `half_w`). The margin is twice their sum, at least
-//!   32u (1.9e-6 rad). An angle
-//!   `a` moves the screen coordinate by at most `a (1 + s^2)` (s = tan of the angle off the
-//!   axis, at most `half_w^2 + half_h^2` squared), which is turned into pixels, plus 1e-3 pixel
-//!   for the f64 rounding of the projection itself (under 1e-6 pixel). The rectangle holds the
-//!   pixels whose centres lie within that margin of the box: a primitive between two pixel
-//!   centres covers none.
+//! - Polygons. Every ray a kernel (f32 or f64) accepts lies within `E` radians of each edge
+//!   plane of the polygon's stored f32 normals (`E = max(32u, 2 (8u + a))`, `a` =
+//!   `Camera::direction_error`; derived: `11u + a`), and on the plane's side. In screen
+//!   coordinates those are half-planes; the image clipped by them is the polygon's screen
+//!   region, and its pixel rectangle those pixels whose centres lie in the region's box
+//!   (widened by 1e-3 pixel for the f64 rounding). The region, not the polygon's projected
+//!   vertices with a margin: a sliver narrower than `E` (a far mesh's silhouette triangle seen
+//!   nearly edge-on through a narrow field of view) is accepted over a strip many times its
+//!   length, up to across the whole image.
+//! - Spheres. Every ray a kernel accepts passes within `r' = r (1 + 4u) + E |oc|` of the
+//!   centre: the rectangle covers the projected corners of the camera-aligned cube of half
+//!   size `r'`; the eye within `r'` gets the whole image.
 //! - Each entry names the tile's packets (4x2 pixels) that the rectangle overlaps, less those
 //!   whose rays all lie outside one of a polygon's edge planes or all pass too far from a
 //!   sphere's centre (`footprint::PacketCones`, derived there); a tile where no packet is left
 //!   gets no entry. A packet walks only its own entries.
-//! - Anything that reaches to or behind the eye's plane (a vertex or the cube within
-//!   `NEAR_PLANE_REL` of it, the eye inside a sphere) gets the whole image: its projection is
-//!   unbounded. Rectangles are clipped to the image; one wholly outside it is dropped.
+//! - A sphere's cube reaching to or behind the eye's plane (a corner within `NEAR_PLANE_REL` of
+//!   it) gets the whole image; one wholly and clearly behind it, none. Rectangles are clipped
+//!   to the image; one wholly outside it is dropped.
 //!
 //! Binning (`tiles/bin.rs`) is a parallel counting sort: per-primitive rectangles in parallel,
 //! per-tile counts with atomic adds, a prefix sum, a parallel scatter, then each tile's list
@@ -46,23 +45,13 @@
 //! `near`: no later entry can win. Ids and depths are bit-identical to `--accel none`: the same
 //! kernels, the same (t, id) minimum, and every entry that could win is tested.
 //!
-//! `near` (f64, less a relative margin, rounded down to f32), u = 2^-24:
-//! - polygon, by its plane: `p`, the kernel's own f32 distance from the eye to the polygon's
-//!   plane (read from the packed store, not recomputed). The kernel returns
-//!   `t = p / (d . N')` with `|d . N'| <= 1 + 4u` (unit vectors, rounded), so any returned
-//!   `t >= p (1 - 5u)` at any angle of incidence; lanecast takes `p (1 - 8u)`.
-//! - polygon, by its distance: `D`, the distance from the eye to the polygon (its closest point,
-//!   Ericson's triangle test), is a far tighter bound for a mesh, whose planes often pass near
-//!   the eye. A ray the kernel accepts meets the plane at most `a t / c` outside the polygon
-//!   (`a` <= 16u: edge tolerance and direction error; `c = d . N`, the cosine of incidence),
-//!   and `d . N'` errs by 4u, so `t' >= D (1 - 2u) / ((1 + a/c)(1 + 4u/c))`. Every accepted ray
-//!   has `c >= p / dmax` (dmax: the farthest vertex), so with `k = dmax / p`,
-//!   `t' >= D (1 - 24u k)` to first order; lanecast takes `D (1 - 64u k)`. The larger of the
-//!   two bounds is used, less 1e-5 relative.
-//! - sphere: `|oc| - r` (0 with the eye inside). The stable form returns `c / q` with
-//!   `c = |oc|^2 - r^2` and `q = b + sqrt(disc)`; disc carries an absolute error of a few
-//!   `u |oc|^2`, so `q <= |oc| + r + 7e-4 |oc|` and `t >= (|oc| - r)(1 - 7e-4)`; lanecast takes
-//!   2e-3.
+//! `near` (f64, rounded down to f32; `accel::reach` derives both), u = 2^-24:
+//! - polygon: `p (1 - u) / (cmax + e_c)`, with `p` the kernel's own f32 plane distance, `cmax`
+//!   the largest cosine between the plane's normal and a ray of the polygon's screen region and
+//!   `e_c = 2 (a + 4u)` the error of the kernel's `d . N`; never below the plane bound
+//!   `p (1 - u) / (1 + 8u)`, which holds at any angle of incidence.
+//! - sphere: `c (1 - u) / ((|oc| (1 + 8u) + r (1 + 2u)) (1 + 2u))` from the f32 constants
+//!   (`c = |oc|^2 - r^2`), the kernel's `c / q` with `q` at its largest; 0 with the eye inside.
 //!
 //! `kernels_accept_rays_only_in_their_packets_and_beyond_near` checks the packets and
 //! `t >= near` ray by ray.
@@ -70,12 +59,16 @@
 //! The screen geometry, the rectangles, the `near` bounds and the packets' cones are computed
 //! in `footprint.rs`, from the derivations above.
 //!
-//! Precision assumed: f32 kernels fed by f64 setup (as `soa`); the bounds above hold for any
-//! scene `scene::validate::f32_range` accepts. Known to cost, not to fail: a primitive crossing
-//! the eye's plane is in every tile's list (correct, slow if there are many); a deep stack of
-//! large overlapping primitives fills every list (the BVH culls those better).
-//! Proven by tests/accel.rs (tiles == none, bit for bit: seed scenes, random scenes, primitives
-//! crossing the eye's plane, the eye inside a sphere, rectangles clipped at the border).
+//! Precision assumed: f32 kernels fed by f64 setup (as `soa`), and the f64 kernels, whose
+//! accepted rays and distances lie inside the f32 bounds; the bounds hold for any scene
+//! `scene::validate::f32_range` accepts and any camera `scene::validate::camera` accepts.
+//! Known to cost, not to fail: a primitive crossing the eye's plane is in every tile its region
+//! reaches (correct, slow if there are many); a sliver seen edge-on is in every tile of its
+//! strip; a deep stack of large overlapping primitives fills every list (the BVH culls those
+//! better). Proven by `accel::reach`'s tests (the bounds against the kernels, over random
+//! cameras, scales and shapes), tests/accel.rs and tests/accel_random.rs (tiles == none, bit for
+//! bit: seed scenes, random scenes, primitives crossing the eye's plane, the eye inside a
+//! sphere, rectangles clipped at the border, random telephoto cameras on the meshes).
 
 use super::bvh::ranges_x4d;
 use super::footprint::PacketCones;
@@ -413,12 +406,12 @@ impl Tiles {
     /// hit is nearer than the next entry's `near`. `p` holds the same primitives in the same
     /// order as the `Packed` the tiles were built from, once rearranged (`Order`).
     ///
-    /// The bounds hold for both precisions: the f64 kernel accepts rays within a far smaller
-    /// edge tolerance than the f32 one (`kernel::edge_eps`) and its distances err by f64 rounding
-    /// only (its rays differ from the f32 ones by a few u, inside the 32u margin), so its hits
-    /// lie inside the f32 rectangles and packets and beyond the f32 `near`; the scalar f32
-    /// kernel is the packet kernel's formula in one lane. Proven against `--accel none`, bit for
-    /// bit, by tests/accel.rs.
+    /// The bounds hold for both precisions (`accel::reach`): the f64 kernel accepts rays within
+    /// a far smaller edge tolerance than the f32 one (`kernel::edge_eps`), about normals within
+    /// u/2 of the f32 ones the regions are built from, and its distances err by f64 rounding
+    /// only, so its hits lie inside the f32 rectangles and packets and beyond the f32 `near`;
+    /// the scalar f32 kernel is the packet kernel's formula in one lane. Proven against
+    /// `--accel none`, bit for bit, by tests/accel.rs and tests/accel_random.rs.
     #[inline]
     pub fn trace_x1<T: Real>(
         &self,

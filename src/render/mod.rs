@@ -61,7 +61,7 @@ impl PacketScene {
         match accel.resolve(scene.shapes.len()) {
             Accel::Bvh => {
                 let prepared = Prepared::new(scene, eye);
-                let (bvh, reordered) = Bvh::new(&prepared, scene, eye);
+                let (bvh, reordered) = Bvh::new(&prepared, scene, camera);
                 PacketScene {
                     packed: Packed::new(&reordered),
                     bvh: Some(bvh),
@@ -288,7 +288,7 @@ pub(crate) fn packet_blocks<const BW: usize>(
                         if suspect != 0 {
                             let winner = |id| tiles.winner_in_packet(&p.packed, &lists, k, id);
                             let ids = hit.id;
-                            pending.push(r.pending((bx, by), (suspect, carried), ids, winner));
+                            pending.push(r.pending((bx, by), suspect, ids, winner));
                         }
                         store((ids, depth), rows, bx, by, hit);
                     });

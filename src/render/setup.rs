@@ -50,7 +50,7 @@ pub fn prepare_f64(
             (p, Structure::Tiles(Box::new(tiles)))
         }
         Accel::Bvh => {
-            let (bvh, reordered) = Bvh::new(&p, scene, camera.eye);
+            let (bvh, reordered) = Bvh::new(&p, scene, camera);
             (reordered, Structure::Bvh(Box::new(bvh)))
         }
         _ => (p, Structure::None),

@@ -5,7 +5,7 @@
 use super::{
     Entry, INDEX_MASK, KIND_SHIFT, PACKETS, QUAD, SPHERE, TILE_H, TILE_W, TRIANGLE, Tiles,
 };
-use crate::accel::footprint::{PacketCones, SPHERE_MARGIN, Screen, near_f32, polygon_footprint};
+use crate::accel::footprint::{PacketCones, Screen, near_f32, polygon_footprint, sphere_footprint};
 use crate::camera::Camera;
 use crate::kernel::packet::{BLOCK_H, BLOCK_W};
 use crate::par::prelude::*;
@@ -69,26 +69,18 @@ impl Tiles {
         let screen = Screen::new(camera);
         let (w, h) = (camera.width as usize, camera.height as usize);
         let (cols, rows) = (w.div_ceil(TILE_W), h.div_ceil(TILE_H));
-        let eye = camera.eye;
         let footprint = |kind: u32, index: usize, id: f32| -> Print {
-            let (rect, near) = match scene.shapes.get(id as usize) {
-                Shape::Sphere { center, radius } => {
-                    let oc = center - eye;
-                    let dist = oc.length();
-                    let rect = if dist <= radius {
-                        Some(screen.whole())
-                    } else {
-                        let (c, r) = ((screen.r, screen.u, screen.f), radius);
-                        let corners = (0..8).map(|i| {
-                            let s = |bit: usize| if i >> bit & 1 == 1 { r } else { -r };
-                            oc + c.0 * s(0) + c.1 * s(1) + c.2 * s(2)
-                        });
-                        screen.rect(corners)
+            let (rect, near) = match kind {
+                SPHERE => {
+                    let Shape::Sphere { center, radius } = scene.shapes.get(id as usize) else {
+                        unreachable!("the packed spheres are the scene's spheres")
                     };
-                    (rect, (dist - radius).max(0.0) * (1.0 - SPHERE_MARGIN))
+                    let s = &packed.spheres;
+                    let oc = [s.ocx[index], s.ocy[index], s.ocz[index]];
+                    sphere_footprint(&screen, (center, radius), (oc, s.r2[index], s.c[index]))
                 }
-                Shape::Triangle(v) => polygon_footprint(&screen, &v, packed.triangles.p[index]),
-                Shape::Quad(v) => polygon_footprint(&screen, &v, packed.quads.p[index]),
+                TRIANGLE => polygon_footprint(&screen, &packed.triangles.get(index)),
+                _ => polygon_footprint(&screen, &packed.quads.get(index)),
             };
             Print {
                 near: near_f32(near),

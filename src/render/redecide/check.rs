@@ -257,12 +257,15 @@ impl Redecide<'_> {
     }
 
     /// The packet at `(bx, by)` of a strip (`by`: its first row there), traced with each
-    /// lane's trusted distance carried along (`carried`: the `hi` of the primitive that won the
-    /// lane, negative where the primitive has a lower limit too; [`super::carry`]), whose lanes
-    /// `suspect` (bits) lie beyond their carried distance: those beyond a finite `hi` are
-    /// untrusted as they stand, those on a primitive with a `lo` must look their limits up.
-    /// The packet loop finds `suspect` with one compare, and calls this for the few packets
-    /// where it is not empty: out of line, and cold, so that the loop's own code stays as it is
+    /// lane's trusted distance carried along (the `hi` of the primitive that won the lane,
+    /// negative where the primitive has a lower limit too; [`super::carry`]), whose lanes
+    /// `suspect` (bits) lie beyond their carried distance. Each looks its primitive's limits
+    /// up before it is measured ([`Redecide::fix_pending`]): the carried `hi` is rounded down
+    /// (by up to 2^-14 relative, `Tiles::attach`), so a lane just below its `hi` arrives here,
+    /// and is kept as the strip scan of `--accel none` and `bvh` keeps it. The pixels measured
+    /// are then those outside their limits whatever the acceleration. The packet loop finds
+    /// `suspect` with one compare, and calls this for the few packets where it is not empty:
+    /// out of line, and cold, so that the loop's own code stays as it is
     /// without it (inlined, it cost auto 4-5% on 65,536 spheres in the precision bench). `ids`
     /// are the lanes' winners, and `winner_of(id)` the kind and packed index of such a winner,
     /// found where the packet's data is still in cache (the tiles: `Tiles::winner_in_packet`).
@@ -271,12 +274,10 @@ impl Redecide<'_> {
     pub(crate) fn pending(
         &self,
         (bx, by): (usize, usize),
-        (suspect, carried): (u32, f32x8),
+        suspect: u32,
         ids: f32x8,
         winner_of: impl Fn(f32) -> Option<(usize, usize)>,
     ) -> Pending {
-        // -inf arrives below -3.4e38 (`Tiles::attach` rounds down): the sign tells it
-        let lookup = carried.simd_lt(f32x8::ZERO).to_bitmask() & suspect;
         let (mut known, ids) = ([Known::Unknown; 8], ids.to_array());
         // (the lanes of a packet mostly share their winner: found once)
         let mut last = (f32::NAN, Known::Unknown);
@@ -298,12 +299,15 @@ impl Redecide<'_> {
                 Known::Unknown => self.scene.shapes.address(ids[lane] as usize),
             };
             prefetch_bytes(start, len);
+            if let Some(limit) = self.limits.get(ids[lane] as usize) {
+                let (start, len) = bytes(limit);
+                prefetch_bytes(start, len);
+            }
         }
         Pending {
             bx,
             by,
-            untrusted: suspect & !lookup,
-            lookup,
+            suspect,
             known,
         }
     }
@@ -326,12 +330,10 @@ impl Redecide<'_> {
         mine: &mut Vec<usize>,
     ) -> usize {
         // (packet, lane, hit) of every lane to measure, in packet order
-        let lanes = pending
-            .iter()
-            .map(|p| (p.untrusted | p.lookup).count_ones());
+        let lanes = pending.iter().map(|p| p.suspect.count_ones());
         let mut suspects = Vec::with_capacity(lanes.sum::<u32>() as usize);
         for (k, p) in pending.iter().enumerate() {
-            let mut m = p.untrusted | p.lookup;
+            let mut m = p.suspect;
             while m != 0 {
                 let lane = m.trailing_zeros();
                 m &= m - 1;
@@ -340,11 +342,11 @@ impl Redecide<'_> {
                     p.by + lane as usize / BLOCK_W,
                 );
                 let (id, t) = (ids[y * width + x] as f32, depth[y * width + x]);
-                if p.lookup >> lane & 1 == 1 {
-                    let [lo, hi] = self.limit(id);
-                    if (lo..=hi).contains(&t) {
-                        continue;
-                    }
+                // within its limits (the carried `hi` was rounded down): trusted, as without
+                // the tiles
+                let [lo, hi] = self.limit(id);
+                if (lo..=hi).contains(&t) {
+                    continue;
                 }
                 let known = p.known[lane as usize];
                 let y = y_start + y;
@@ -426,8 +428,8 @@ fn group((ids, depth): (&[i32], &[f32]), x0: usize, width: usize) -> ([f32; 4], 
 pub(crate) struct Pending {
     bx: usize,
     by: usize,
-    untrusted: u32,
-    lookup: u32,
+    /// The lanes beyond their carried trusted distance.
+    suspect: u32,
     /// Per suspect lane, where its winner's measurement constants are kept.
     known: [Known; 8],
 }
