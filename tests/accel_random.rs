@@ -9,10 +9,10 @@ mod common;
 
 use common::Rng;
 use glam::DVec3;
-use lanecast::accel::Accel;
-use lanecast::camera::Camera;
-use lanecast::render::{Kernel, Method, Options, Renderer};
+use lanecast::Accel;
+use lanecast::Camera;
 use lanecast::scene::{CameraSpec, Scene, Shape, Shapes};
+use lanecast::{Kernel, Method, Options, Renderer};
 use std::path::Path;
 
 /// What renders a case: each is checked through every acceleration against `none`.
@@ -132,10 +132,10 @@ fn random_camera(rng: &mut Rng, c: DVec3, size: f64) -> CameraSpec {
 
 /// `scene` seen by `spec`, when lanecast accepts that camera for it (else `None`).
 fn with_camera(scene: &Scene, spec: CameraSpec) -> Option<Scene> {
-    lanecast::scene::validate::camera(&spec).ok()?;
+    lanecast::experimental::scene::validate::camera(&spec).ok()?;
     let mut s = scene.clone();
     s.camera = spec;
-    lanecast::scene::validate::f32_range(&s).ok()?;
+    lanecast::experimental::scene::validate::f32_range(&s).ok()?;
     Some(s)
 }
 

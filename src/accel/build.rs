@@ -14,9 +14,9 @@
 
 use super::reach::{View, sphere_cap};
 use crate::kernel::polygon::PolyK;
+use crate::par::prelude::*;
 use crate::soa::{Group, Prepared};
 use glam::DVec3;
-use rayon::prelude::*;
 
 /// Padding of a primitive's own box, relative to the largest eye-relative coordinate magnitude
 /// of the box (about 33u): it keeps the box of a flat primitive from being flat. Correctness
@@ -153,7 +153,7 @@ fn polygon_boxes<'a, const N: usize>(
     view: &'a View,
     tag: u8,
     own: &'a (impl Fn(i32) -> Aabb + Sync),
-) -> impl IndexedParallelIterator<Item = (Aabb, (u8, u32))> + 'a {
+) -> impl IntoParallelIterator<Item = (Aabb, (u8, u32))> + 'a {
     g.k.par_iter()
         .zip(&g.id)
         .enumerate()

@@ -157,7 +157,9 @@ impl View {
         let by_plane = p / (1.0 + 8.0 * U32);
         let nrm = self.local(DVec3::new(nrm[0].into(), nrm[1].into(), nrm[2].into()));
         // (no ray of the region with `c32 > 0`, `den <= 0`: no hit; the plane bound stands)
-        let den = region.max_cosine(nrm).map(|c| c * (1.0 + SLACK) + SLACK + self.cosine);
+        let den = region
+            .max_cosine(nrm)
+            .map(|c| c * (1.0 + SLACK) + SLACK + self.cosine);
         let by_region = match den {
             Some(den) if den > 0.0 => p / den,
             _ => by_plane,
