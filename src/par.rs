@@ -379,6 +379,10 @@ mod tests {
                     .map(|c| c.iter().sum::<u32>())
                     .collect::<Vec<_>>()
             ),
+            format!(
+                "{:?}",
+                data.chunks_exact(64).map(|c| c[63]).collect::<Vec<_>>()
+            ),
             format!("{}", data.windows(2).filter(|w| w[0] < w[1]).count()),
             format!(
                 "{:?}",
