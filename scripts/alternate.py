@@ -19,18 +19,9 @@ import subprocess
 import sys
 import tempfile
 
+from scale_scenes import scene_path
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-
-
-def scene_path(name):
-    if os.path.exists(name):
-        return name
-    path = os.path.join(ROOT, "target", "scale", name + ".sc")
-    if not os.path.exists(path):
-        sys.exit(f"{name}: no such file, nor {path}; the scaling scenes K_N are written into "
-                 "target/scale/ by `python3 ../shared/anchors/gen_scenes.py --out target/scale` "
-                 "(../shared/anchors lies beside the checkout, not in this repository)")
-    return path
 
 
 def main():
