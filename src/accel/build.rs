@@ -159,24 +159,32 @@ fn polygon_boxes<'a, const N: usize>(
         .enumerate()
         .map(move |(i, (k, &id))| {
             (
-                own(id).padded().union(reach_box(&k.cast(), view)),
+                reach_box(own(id).padded(), &k.cast(), view),
                 (tag, i as u32),
             )
         })
 }
 
-/// A box holding, for every ray a kernel may accept on the polygon of f32 constants `k`, the
-/// point at a distance no greater than any it returns there, with a margin for the slab
-/// test's rounding (`View::polygon_slice`); empty when no pixel's ray reaches it. With every
+/// `own` (the polygon's own box) grown to hold, for every ray a kernel may accept on the
+/// polygon of f32 constants `k`, a point at a distance no greater than any it returns there,
+/// with a margin for the slab test's rounding: by `View::polygon_slice` or `View::polygon_cut`,
+/// whichever grows it less (nothing when no pixel's ray reaches the polygon). With every
 /// ancestor's box holding it, the traversal enters each node on the way to the primitive no
 /// later than the primitive's hit: the BVH finds every hit `none` finds. The polygon's own box
 /// is not enough: the rays a kernel accepts on a sliver seen nearly edge-on form a strip
 /// across the image (`accel::reach`).
-pub(crate) fn reach_box<const N: usize>(k: &PolyK<f32, N>, view: &View) -> Aabb {
+pub(crate) fn reach_box<const N: usize>(own: Aabb, k: &PolyK<f32, N>, view: &View) -> Aabb {
     let region = view.polygon_region(&k.n, k.nrm);
     let near = view.polygon_near(&region, k.nrm, k.p);
-    view.polygon_slice(&region, near)
-        .map_or(Aabb::EMPTY, |(min, max)| Aabb { min, max })
+    let grown = |b: Option<(DVec3, DVec3)>| b.map(|(min, max)| own.union(Aabb { min, max }));
+    let slice = grown(view.polygon_slice(&region, near));
+    let cut = grown(view.polygon_cut(&region, k.nrm, k.p));
+    match (slice, cut) {
+        // either holds what the traversal needs: the smaller serves the SAH better
+        (Some(s), Some(c)) if c.half_area() < s.half_area() => c,
+        (Some(b), _) | (None, Some(b)) => b,
+        (None, None) => own,
+    }
 }
 
 /// Builds the hierarchy over `boxes`.

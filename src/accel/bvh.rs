@@ -39,7 +39,7 @@ pub struct Node {
     pub meta: u32,
 }
 
-const LEAF: u32 = 1 << 31;
+pub(crate) const LEAF: u32 = 1 << 31;
 
 /// A BVH over one scene's primitives, seen from one eye.
 #[derive(Debug, Clone, Default)]

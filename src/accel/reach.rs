@@ -59,7 +59,8 @@
 //! its box no later than the ray's best hit. So each primitive's box must hold a point of
 //! every ray a kernel accepts on it, no farther than the distance the kernel returns there,
 //! with a margin of `4u` of that distance for the slab test's rounding (2u):
-//! [`View::polygon_slice`] (the region's rays at the polygon's `near`) and [`sphere_cap`] (the
+//! [`View::polygon_slice`] (the region's rays at the polygon's `near`) or [`View::polygon_cut`]
+//! (the region's rays cut by a plane just nearer than the polygon's), and [`sphere_cap`] (the
 //! cone of the accepted rays at the sphere's `near`, or the eye itself when it is within
 //! `32u (|oc| + r)` of the sphere).
 //!
@@ -138,14 +139,21 @@ impl View {
         n: &[[f32; 3]; N],
         nrm: [f32; 3],
     ) -> Region {
-        let mut region = Region::image(self.half_w, self.half_h);
         let v = |x: [f32; 3]| DVec3::new(x[0].into(), x[1].into(), x[2].into());
         // `n . q >= -E S` for each edge, `N . q > -e_c S` for `t > 0`: offsets rounded up
-        let planes = n.iter().map(|&e| (v(e), self.edge));
-        for (w, off) in planes.chain([(v(nrm), self.cosine)]) {
-            let w = self.local(w);
-            let slack = (off + SLACK) * self.stretch * (1.0 + SLACK);
-            region.clip(w.x, w.y, w.z + slack);
+        let line = |x: [f32; 3], off: f64| {
+            let w = self.local(v(x));
+            [w.x, w.y, w.z + (off + SLACK) * self.stretch * (1.0 + SLACK)]
+        };
+        let edges = n.map(|e| line(e, self.edge));
+        // most polygons: the edges' lines meet in a polygon inside the image (the plane's side
+        // then cuts nothing off it that matters: the region may keep more)
+        if let Some(region) = Region::corners(&edges, self.half_w, self.half_h) {
+            return region;
+        }
+        let mut region = Region::image(self.half_w, self.half_h);
+        for [a, b, c] in edges.into_iter().chain([line(nrm, self.cosine)]) {
+            region.clip(a, b, c);
         }
         region
     }
@@ -203,6 +211,42 @@ impl View {
             }
         }
         let pad = near * (self.ray + 8.0 * U32) * (1.0 + SLACK)
+            + SLACK * min.abs().max(max.abs()).max_element();
+        Some((min - DVec3::splat(pad), max + DVec3::splat(pad)))
+    }
+    /// Another box with [`View::polygon_slice`]'s guarantee, for the polygon of plane normal
+    /// `nrm` and plane distance `p` (f32 constants) whose rays are those of `region`: the
+    /// region's rays cut by the plane `N . x = p_lo`, nearer than the polygon's own plane.
+    /// `None` when a ray of the region may run parallel to the plane (`N . d <= 0`).
+    ///
+    /// Each accepted ray has `t >= p (1 - u) / (N . d + e_c)` (module comment), which, on the
+    /// rays with `N . d >= c_min > 0`, is at least `p_lo / N . d` with
+    /// `p_lo = p (1 - u) c_min / (c_min + e_c)`: the distance to that plane. The cut is the
+    /// region projected from the eye onto the plane, a convex polygon whose corners are the
+    /// region's corners' images. `c_min`, the smallest `N . d` over the region, is minus the
+    /// largest `-N . d`. The margin is [`View::polygon_slice`]'s, at the cut's farthest
+    /// distance, `p_lo / c_min`. For a polygon seen face-on this is the polygon itself, moved
+    /// towards the eye by `e_c / c_min` of its distance; the slice at `near`, a sphere's cap
+    /// through the nearest point, reaches out of the polygon's box towards the eye by its depth.
+    pub(crate) fn polygon_cut(
+        &self,
+        region: &Region,
+        nrm: [f32; 3],
+        p: f32,
+    ) -> Option<(DVec3, DVec3)> {
+        let n = DVec3::new(nrm[0].into(), nrm[1].into(), nrm[2].into());
+        let c_min = -(region.max_cosine(-self.local(n))? * (1.0 + SLACK) + SLACK);
+        if c_min.is_nan() || c_min <= 0.0 {
+            return None;
+        }
+        let p_lo = f64::from(p) * (1.0 - U32) * c_min / (c_min + self.cosine) * (1.0 - SLACK);
+        let (mut min, mut max) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+        for &[x, y] in region.vertices() {
+            let q = self.f + self.r * x + self.u * y;
+            let point = q * (p_lo / n.dot(q));
+            (min, max) = (min.min(point), max.max(point));
+        }
+        let pad = p_lo / c_min * (self.ray + 8.0 * U32) * (1.0 + SLACK)
             + SLACK * min.abs().max(max.abs()).max_element();
         Some((min - DVec3::splat(pad), max + DVec3::splat(pad)))
     }
@@ -268,6 +312,35 @@ impl Region {
             [-half_w, half_h],
         ]);
         Region { v, n: 4 }
+    }
+
+    /// The polygon where the half-planes `a sx + b sy + c >= 0` of `lines` (in order around
+    /// it) meet, when each two consecutive lines cross at an angle over 1e-3 rad at a point
+    /// that every half-plane holds and that lies inside the image (`|sx| <= half_w`,
+    /// `|sy| <= half_h`): the region is then that polygon, whose corners are those points (a
+    /// bounded intersection of `N` half-planes with `N` distinct corners on consecutive lines
+    /// has no other). `None` otherwise: the caller clips the image instead.
+    fn corners<const N: usize>(lines: &[[f64; 3]; N], half_w: f64, half_h: f64) -> Option<Region> {
+        let mut v = [[0.0; 2]; MAX_VERTICES];
+        for i in 0..N {
+            let ([a0, b0, c0], [a1, b1, c1]) = (lines[(i + N - 1) % N], lines[i]);
+            let det = a0 * b1 - a1 * b0;
+            // (the sine of the angle between the lines, squared, over 1e-6)
+            if det.is_nan() || det * det <= 1e-6 * (a0 * a0 + b0 * b0) * (a1 * a1 + b1 * b1) {
+                return None;
+            }
+            let p = [(b0 * c1 - b1 * c0) / det, (c0 * a1 - c1 * a0) / det];
+            let holds = lines
+                .iter()
+                .all(|&[a, b, c]| a * p[0] + b * p[1] + c >= -1e-9 * (c.abs() + 1e-300));
+            if !holds || p[0].abs() > half_w || p[1].abs() > half_h {
+                return None;
+            }
+            v[i] = p;
+        }
+        let region = Region { v, n: N };
+        // distinct corners: a polygon of area
+        (region.orientation().abs() > 0.0).then_some(region)
     }
 
     /// The vertices, in order.
@@ -378,8 +451,13 @@ impl Region {
         if n.z > 0.0 && self.contains([n.x / n.z, n.y / n.z]) {
             return Some(n.length());
         }
-        let q = |[x, y]: [f64; 2]| DVec3::new(x, y, 1.0);
-        let arcs = (0..v.len()).map(|i| arc_max(q(v[i]), q(v[(i + 1) % v.len()]), n));
+        // the corners' unit directions and their `n . d`, once each
+        let mut unit = [(DVec3::ZERO, 0.0); MAX_VERTICES];
+        for (u, &[x, y]) in unit.iter_mut().zip(v) {
+            let d = DVec3::new(x, y, 1.0).normalize();
+            *u = (d, n.dot(d));
+        }
+        let arcs = (0..v.len()).map(|i| arc_max(unit[i], unit[(i + 1) % v.len()], n));
         Some(arcs.fold(f64::NEG_INFINITY, f64::max))
     }
 }
@@ -391,12 +469,13 @@ impl Region {
 /// arc of angle `w` lies within `w / 2` of an end, along a direction orthogonal to it to
 /// first order, so `n . d <= n . end + |n_perp| w / 2 + |n| w^2 / 8`, with `n_perp` the part
 /// of `n` orthogonal to `a`.
-fn arc_max(a: DVec3, b: DVec3, n: DVec3) -> f64 {
-    let (a1, b1) = (a.normalize(), b.normalize());
-    let ends = n.dot(a1).max(n.dot(b1));
+///
+/// `a` and `b` come as unit directions with their `n . d`.
+fn arc_max((a1, na): (DVec3, f64), (b1, nb): (DVec3, f64), n: DVec3) -> f64 {
+    let ends = na.max(nb);
     let m = a1.cross(b1);
-    let sin = m.length();
-    if sin.is_nan() || sin < 1e-6 {
+    let sin2 = m.length_squared();
+    if sin2.is_nan() || sin2 < 1e-12 {
         let cos = a1.dot(b1);
         if cos.is_nan() || cos <= 0.0 {
             return n.length();
@@ -405,7 +484,7 @@ fn arc_max(a: DVec3, b: DVec3, n: DVec3) -> f64 {
         let perp = (n - a1 * n.dot(a1)).length();
         return ends + perp * w / 2.0 + n.length() * w * w / 8.0;
     }
-    let np = n - m * (n.dot(m) / (sin * sin));
+    let np = n - m * (n.dot(m) / sin2);
     if a1.cross(np).dot(m) >= 0.0 && np.cross(b1).dot(m) >= 0.0 {
         np.length().max(ends)
     } else {

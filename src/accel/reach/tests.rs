@@ -189,23 +189,44 @@ struct Seen {
     closest: f64,
 }
 
+/// A BVH of one leaf, the box `(min, max)` (rounded outward to f32, as `Bvh::new` rounds),
+/// over the one primitive of `p`.
+fn one_box(p: &crate::soa::Prepared<f64>, (min, max): (DVec3, DVec3)) -> crate::accel::Bvh {
+    use crate::real::{f32_down, f32_up};
+    let one = [p.spheres.len(), p.triangles.len(), p.quads.len()].map(|n| (0, n as u32));
+    crate::accel::Bvh {
+        nodes: vec![crate::accel::bvh::Node {
+            min: min.to_array().map(f32_down),
+            max: max.to_array().map(f32_up),
+            index: 0,
+            meta: crate::accel::bvh::LEAF,
+        }],
+        leaves: vec![one],
+    }
+}
+
 /// Checks one primitive (`shape`, its f64 and f32 constants by `hits`) through `cam`: every
 /// pixel of the window a kernel accepts lies in `region` (when given) and in `rect`, every
 /// distance is at least `near`, and the BVH built over the shape alone finds the same hits
-/// (f32 and f64, one ray and eight).
+/// (f32 and f64, one ray and eight), as does a BVH of each box of `boxes` alone (each must
+/// serve the traversal by itself).
 fn check_pixels(
     cam: &Camera,
     scene: &Scene,
     (region, rect, near): (Option<&Region>, Option<[u16; 4]>, f64),
     hits: impl Fn(V3<f32>, V3<f64>) -> (Option<f32>, Option<f64>),
+    boxes: &[(DVec3, DVec3)],
     seen: &mut Seen,
 ) {
-    use crate::accel::bvh::{trace_bvh_x1, trace_bvh_x8};
+    use crate::accel::bvh::{trace_bvh_x1, trace_bvh_x4d, trace_bvh_x8};
+    use crate::kernel::methods::wide64::Hit4d;
     use crate::kernel::scalar::trace_x1;
     let (t32, t64) = (cam.tables::<f32>(1, 1), cam.tables::<f64>(1, 1));
     let prepared = crate::soa::Prepared::new(scene, cam.eye);
     let (bvh, reordered) = crate::accel::Bvh::new(&prepared, scene, cam);
     let (p32, packed) = (reordered.cast::<f32>(), crate::soa::Packed::new(&reordered));
+    let alone: Vec<_> = boxes.iter().map(|&b| one_box(&prepared, b)).collect();
+    let packed_alone = crate::soa::Packed::new(&prepared);
     for (x, y) in window(cam) {
         let (d32, d) = (t32.dir_x1(x, y), t64.dir_x1(x, y));
         let (h32, h64) = hits(d32, d);
@@ -242,6 +263,27 @@ fn check_pixels(
             trace_x1(&reordered, d),
             "{at}: bvh f64"
         );
+        // a tie at the kernel's own distance, held by another primitive (of a higher id): the
+        // traversal must still reach this one, entering every box no later than its hit
+        let tie = |bvh: &crate::accel::Bvh, packed: &crate::soa::Packed, p64, what: &str| {
+            use wide::{f32x8, f64x4};
+            if let Some(t) = h32 {
+                let mut hit = crate::kernel::Hit8::new(f32x8::splat(1.0).simd_gt(f32x8::ZERO));
+                (hit.t, hit.id) = (f32x8::splat(t), f32x8::splat(1e9));
+                trace_bvh_x8(packed, bvh, &d32.map(f32x8::splat), &mut hit);
+                assert_eq!(hit.id.to_array()[0], 0.0, "{at}: {what}, f32 at {t:e}");
+            }
+            if let Some(t) = h64 {
+                let mut hit = Hit4d::new(f64x4::splat(1.0).simd_gt(f64x4::ZERO));
+                (hit.t, hit.id) = (f64x4::splat(t), f64x4::splat(1e9));
+                trace_bvh_x4d(p64, bvh, &d.map(f64x4::splat), &mut hit);
+                assert_eq!(hit.id.to_array()[0], 0.0, "{at}: {what}, f64 at {t:e}");
+            }
+        };
+        tie(&bvh, &packed, &reordered, "bvh");
+        for b in &alone {
+            tie(b, &packed_alone, &prepared, "one box");
+        }
         let mut hit = crate::kernel::Hit8::new(wide::f32x8::splat(1.0).simd_gt(wide::f32x8::ZERO));
         trace_bvh_x8(&packed, &bvh, &d32.map(wide::f32x8::splat), &mut hit);
         let (t8, id8) = (hit.t.to_array()[0], hit.id.to_array()[0]);
@@ -269,10 +311,14 @@ fn polygon_regions_hold_every_accepted_ray() {
     while cases < 1500 {
         let size = rng.log(-4.0, 4.0);
         let centre = rng.direction() * rng.log(-3.0, 6.0);
-        let (e1, e2) = {
+        // along the axes one time in three (where the BVH's boxes are as tight as they get)
+        let (e1, e2) = if rng.unit() < 0.3 {
+            let axes = [DVec3::X, DVec3::Y, DVec3::Z];
+            let i = rng.below(3) as usize;
+            (axes[i], axes[(i + 1 + rng.below(2) as usize) % 3])
+        } else {
             let e1 = rng.direction();
-            let e2 = e1.cross(rng.direction()).normalize();
-            (e1, e2)
+            (e1, e1.cross(rng.direction()).normalize())
         };
         // a sliver one time in two: its third vertex within 1e-6 to 1 of the first edge
         let thin = if rng.unit() < 0.5 {
@@ -289,12 +335,13 @@ fn polygon_regions_hold_every_accepted_ray() {
         } else {
             Shape::Triangle([a, b, c])
         };
-        // the eye 1 to 1e4 sizes away, half the time within 1e-9 to 0.1 rad of the plane
+        // the eye 1 to 1e4 sizes away, half the time within 1e-9 to 0.1 rad of the plane, one
+        // time in six face-on
         let nrm = e1.cross(e2);
-        let elev = if rng.unit() < 0.5 {
-            rng.log(-9.0, -1.0)
-        } else {
-            rng.range(0.1, 1.5)
+        let elev = match rng.below(6) {
+            0..=2 => rng.log(-9.0, -1.0),
+            3 => std::f64::consts::FRAC_PI_2,
+            _ => rng.range(0.1, 1.5),
         };
         let side = e1.rotate_axis(nrm, rng.range(0.0, std::f64::consts::TAU));
         let up_or_down = if rng.unit() < 0.5 { 1.0 } else { -1.0 };
@@ -356,7 +403,13 @@ fn polygon_case<const N: usize>(
     let region = screen.view.polygon_region(&k32.n, k32.nrm);
     let (rect, near) = footprint(screen, &k32);
     let hits = |d32, d| (polygon_x1(&k32, d32), polygon_x1(&k64, d));
-    check_pixels(cam, scene, (Some(&region), rect, near), hits, seen);
+    let view = &screen.view;
+    let boxes = [
+        view.polygon_slice(&region, near),
+        view.polygon_cut(&region, k32.nrm, k32.p),
+    ];
+    let boxes: Vec<_> = boxes.into_iter().flatten().collect();
+    check_pixels(cam, scene, (Some(&region), rect, near), hits, &boxes, seen);
 }
 
 /// Spheres of radius 1e-4 to 1e4, seen from 1 to 1e4 radii away, from just outside (1e-9 of
@@ -424,7 +477,8 @@ fn sphere_reach_holds_every_accepted_ray() {
             }
             (h32, h64)
         };
-        check_pixels(&cam, &scene, (None, rect, near), hits, &mut seen);
+        let cap = [sphere_cap(k32.oc, k32.r2, k32.c)];
+        check_pixels(&cam, &scene, (None, rect, near), hits, &cap, &mut seen);
         cases += 1;
     }
     eprintln!(
