@@ -36,8 +36,7 @@
 //! tile lie together, tiles in row-major order (the order a strip of the render walks them).
 //! A tile then reads its primitives' columns from a few neighbouring cache lines, rather than
 //! from anywhere in them: with primitives in file order, a tile's
-//! entries of a random 65,536-triangle scene each cost about 14 cache misses (README,
-//! "Acceleration", before and after).
+//! entries of a random 65,536-triangle scene each cost about 14 cache misses.
 //!
 //! Occlusion without a tree: each list entry carries `near`, a lower bound on any distance the
 //! f32 kernel can return for that primitive (below). A packet walks its tile's list in order of
@@ -84,7 +83,7 @@ use crate::soa::Packed;
 use crate::soa::Records;
 use wide::{f32x8, f64x4};
 
-/// Tile width in pixels: two packets of 4x2. Measured against 16 and 32 (README, "Acceleration"):
+/// Tile width in pixels: two packets of 4x2. Measured against 16 and 32 (docs/performance.md, "Acceleration"):
 /// the same on the seed scenes, 15-35% faster at 65,536 primitives.
 pub const TILE_W: usize = 8;
 /// Tile height in pixels: the renderer's strip height, so a strip is one row of tiles.
@@ -214,7 +213,7 @@ impl Tiles {
     /// Splits tile (tx, ty)'s list into its eight 4x2 packets' lists (packet `k` at column
     /// `k % 2`, row `k / 2` of the tile) by each entry's packets,
     /// keeping the nearest-first order: each packet then walks only the entries that may reach
-    /// it, with no test per entry (README, "Against Embree 3": growth before and after).
+    /// it, with no test per entry (docs/performance.md, "Growth").
     #[inline]
     pub(crate) fn split_tile(&self, (tx, ty): (usize, usize), lists: &mut PacketLists) {
         let list = self.list(tx, ty);

@@ -3,7 +3,7 @@
 //! `wide::f64x4` (the f64 packets of `kernel::methods::wide64`) implement with their own
 //! instructions. Each generic function is `#[inline(always)]` and monomorphised per lane type,
 //! so the f32x8 code is what it was when written for f32x8 alone (the render bench and
-//! `lanecast -time` give the same figures before and after; README, "Kernels").
+//! `lanecast -time` give the same figures as the f32x8-only code did; docs/architecture.md, "The kernels").
 
 use crate::real::Real;
 use std::ops::{Add, BitAnd, BitAndAssign, BitOr, Div, Mul, Sub};

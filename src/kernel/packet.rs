@@ -12,7 +12,7 @@ use wide::f32x8;
 
 /// Pixel block of one packet: `BLOCK_W` x `BLOCK_H` = `LANES`; lane i covers pixel
 /// (x0 + i % BLOCK_W, y0 + i / BLOCK_W). 4x2 was measured against 8x1 with the `block_shape`
-/// group of `cargo bench --bench render` (README, "Block shape").
+/// group of `cargo bench --bench render` (docs/performance.md, "Packet against scalar").
 pub const BLOCK_W: usize = 4;
 /// Pixel block height: `LANES / BLOCK_W` = 2 rows.
 pub const BLOCK_H: usize = LANES / BLOCK_W;

@@ -40,7 +40,7 @@
 //! (tests/agreement.rs bounds the relative error times cos(theta) by 48u; measured max 4.2u).
 //! `--precision auto` turns this bound into its re-decision rule (`render::redecide`): a hit
 //! whose bound exceeds 0.9e-5 relative is decided again in f64, which guarantees every depth
-//! within 1e-5 of the oracle's (README, "Precision"; `tests/auto.rs`).
+//! within 1e-5 of the oracle's (docs/precision.md; `tests/auto.rs`).
 //! Known to fail: a polygon seen exactly edge-on (O in its plane) is never hit (it has no area
 //! on screen), nor is one with an edge whose ends are parallel seen from O (no edge plane:
 //! `tests::collapsed_edge_is_dropped`); the eye within ~u|V - O| of an edge's line gives an ill-conditioned edge plane.
@@ -211,7 +211,7 @@ pub fn polygon_lanes<L: Lanes, const N: usize>(
     d: &[L; 3],
 ) -> Option<(L, L)> {
     // Leave as soon as no lane is inside an edge: most packets miss most polygons, and the
-    // first edge or two rejects them (measured: README, "Kernel tuning").
+    // first edge or two rejects them (measured with the render bench when the kernel was written).
     let mut inside = edge_inside(k, 0, d);
     for e in 1..N {
         if !inside.any() {
@@ -228,8 +228,7 @@ pub fn polygon_lanes<L: Lanes, const N: usize>(
 /// [`polygon_lanes`] with no early exit: every edge is tested and the plane distance computed
 /// for every packet, and the mask may be empty. The same operations give the same bits where a
 /// lane is inside. For packets whose outcome branches cannot predict (tiles' per-packet lists
-/// of small polygons: about one test in four hits there, counted with a temporary counter;
-/// README, "Against Embree 3").
+/// of small polygons: about one test in four hits there, counted with a temporary counter).
 #[inline(always)]
 pub fn polygon_lanes_all<L: Lanes, const N: usize>(k: &PolyK<L::Scalar, N>, d: &[L; 3]) -> (L, L) {
     let mut inside = edge_inside(k, 0, d);

@@ -23,8 +23,8 @@
 //! absolute error of `disc` (~8u|oc|^2) by 1/(2 sqrt(disc)), so tangent rays lose precision
 //! (measured: 1.6e-5 relative at the outline of scene5's spheres).
 //! `--precision auto` re-decides in f64 the hits these bounds cannot vouch for to 1e-5
-//! (`render::redecide`), which guarantees every depth within 1e-5 of the oracle's (README,
-//! "Precision"; `tests/auto.rs`).
+//! (`render::redecide`), which guarantees every depth within 1e-5 of the oracle's (docs/precision.md;
+//! `tests/auto.rs`).
 //! Known to fail: a
 //! sphere whose radius is below ~4u|oc| (smaller than f32 can place it) flickers at its edge;
 //! rays exactly tangent to a sphere may hit or miss (disc ~ 0 within rounding).

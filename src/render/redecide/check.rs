@@ -292,7 +292,7 @@ impl Redecide<'_> {
             let k = winner_of(ids[lane]).map_or(Known::Unknown, |w| self.known(w));
             (known[lane], last) = (k, (ids[lane], k));
             // what the lane's measurement reads, asked for now and read once the strip is
-            // done: a cache miss a suspect on 65,536 primitives (README, "Precision")
+            // done: a cache miss a suspect on 65,536 primitives (docs/precision.md, "Speed")
             let (start, len) = match k {
                 Known::Sphere(at) => bytes(&self.spheres[at as usize]),
                 Known::Polygon(kind, at) => bytes(&self.planes[kind as usize - 1][at as usize]),
