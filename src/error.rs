@@ -69,8 +69,8 @@ pub enum Error {
 pub const LOCKED_EXIT: i32 = 75;
 
 impl Error {
-    /// The process exit code for this error: 2 for usage and input errors, [`LOCKED_EXIT`]
-    /// (75) for a lock another run held too long, 1 for I/O and other failures. A file that
+    /// The process exit code for this error: 2 for usage and input errors, 75
+    /// for a lock another run held too long, 1 for I/O and other failures. A file that
     /// cannot be read is an I/O error whether the command line names it (the scene) or the
     /// scene does (a mesh).
     pub fn exit_code(&self) -> i32 {
