@@ -127,7 +127,7 @@ impl Camera {
     /// The f32 direction's length differs from 1 by at most 3.5u (the sum of three squares:
     /// 3u, halved by the square root, plus its rounding and the division's); that scales the
     /// ray without turning it. `render::redecide` builds its trust rule on both, and its tests
-    /// check the rule against the kernels.
+    /// check the rule against the kernels; `accel::reach` the tiles' and BVH's culling.
     pub fn direction_error(&self) -> f64 {
         let (t32, t64) = (self.tables::<f32>(1, 1), self.tables::<f64>(1, 1));
         let worst = |a: &[f32], b: &[f64]| {

@@ -8,8 +8,13 @@
 //!   8-ray packet, a node entered when any lane's ray enters its box before that lane's nearest
 //!   hit so far (`bvh.rs`).
 //!
-//! All three feed the same 8-lane kernels and the same (t, id) minimum, so ids and depths are
-//! bit-identical between them (tests/accel.rs).
+//! All three feed the same kernels and the same (t, id) minimum. `tiles` and `bvh` leave a
+//! primitive out of a ray's tests only where no kernel (f32 or f64) can accept that ray on it
+//! at a distance that could still win, by a written bound on the kernels' error (`reach.rs`),
+//! derived for any camera and scene `scene::validate` accepts (to first order in u, with a
+//! slack of at least 1.4 times on the leading terms). So ids and depths are bit-identical
+//! between them, for every kernel and precision, and `--precision auto` re-decides the same
+//! pixels (tests/accel.rs; tests/accel_random.rs over random cameras).
 //!
 //! `auto` picks `tiles` from [`AUTO_MIN`] primitives on, `none` below. Measured (README
 //! "Acceleration", `scripts/accel_table.py`, 1 thread, 1920x1080): with one primitive (scene7)

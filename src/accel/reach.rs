@@ -463,20 +463,27 @@ impl Region {
 }
 
 /// An upper bound on `n . d` over unit directions `d` on the shorter great-circle arc from
-/// `a` to `b`: the projection of `n` onto the arc's plane when it falls between the ends, else
-/// the larger end. The plane's normal `a x b` is known to a relative `2e-16 / sin(angle)`, so
-/// an arc under 1e-6 rad (or nearly half a turn) is bounded instead: every point of a short
-/// arc of angle `w` lies within `w / 2` of an end, along a direction orthogonal to it to
-/// first order, so `n . d <= n . end + |n_perp| w / 2 + |n| w^2 / 8`, with `n_perp` the part
-/// of `n` orthogonal to `a`.
+/// `a` to `b` (`a`, `b` unit, with their `n . d`).
 ///
-/// `a` and `b` come as unit directions with their `n . d`.
+/// Along the arc, `n . d = A cos(phi) + B sin(phi)` (`phi` from `a`), whose slope at `a` has
+/// the sign of `n . b - (n . a) cos w` and at `b` that of `(n . b) cos w - n . a` (`w` the
+/// arc's angle). Unless it rises into the arc from both ends, the larger end is the largest
+/// (the test's rounding, ~4e-16 |n|, can hide a rise of at most ~1e-15 |n| for `w` under a
+/// quarter turn). Else the largest is the length of the projection of `n` onto the arc's
+/// plane. That plane's normal `a x b` is known to a relative `2e-16 / sin(w)`, so an arc under
+/// 1e-6 rad (or nearly half a turn) is bounded instead: every point of a short arc lies within
+/// `w / 2` of an end, along a direction orthogonal to it to first order, so
+/// `n . d <= n . end + |n_perp| w / 2 + |n| w^2 / 8`, with `n_perp` the part of `n` orthogonal
+/// to `a`.
 fn arc_max((a1, na): (DVec3, f64), (b1, nb): (DVec3, f64), n: DVec3) -> f64 {
     let ends = na.max(nb);
+    let cos = a1.dot(b1);
+    if cos > 0.0 && !(nb - na * cos > 0.0 && na - nb * cos > 0.0) {
+        return ends;
+    }
     let m = a1.cross(b1);
     let sin2 = m.length_squared();
     if sin2.is_nan() || sin2 < 1e-12 {
-        let cos = a1.dot(b1);
         if cos.is_nan() || cos <= 0.0 {
             return n.length();
         }

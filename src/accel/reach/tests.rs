@@ -1,7 +1,8 @@
 //! The bounds of `accel::reach` against the kernels themselves, over random cameras (fields of
-//! view from 0.01 to 179.9 degrees, images up to `limits::MAX_SIDE` wide), scales (primitives
-//! from 1e-4 to 1e4 units, 1 to 1e4 sizes away, up to 1e6 from the origin) and shapes (slivers
-//! seen nearly edge-on among them). Each test also reports how close the kernels come to the
+//! view from 1e-4 to 179.9 degrees, images up to `limits::MAX_SIDE` wide, up vectors near the
+//! view direction), scales (primitives of 1e-4 to 1e4 units, 1 to 1e4 sizes away, up to 1e6
+//! units from the origin, each case scaled by 1e-10 to 1e10: within `scene::validate`'s limits,
+//! which the cases are checked against) and shapes (slivers seen nearly edge-on among them). Each test also reports how close the kernels come to the
 //! bound, and asserts that they come within a few times of it (the bound is not vacuous).
 
 use super::*;
@@ -309,8 +310,10 @@ fn polygon_regions_hold_every_accepted_ray() {
     };
     let mut cases = 0;
     while cases < 1500 {
-        let size = rng.log(-4.0, 4.0);
-        let centre = rng.direction() * rng.log(-3.0, 6.0);
+        // (the whole case scaled by 1e-10 to 1e10: eyes up to `limits::MAX_EYE_DISTANCE` away)
+        let scale = rng.log(-10.0, 10.0);
+        let size = rng.log(-4.0, 4.0) * scale;
+        let centre = rng.direction() * rng.log(-3.0, 6.0) * scale;
         // along the axes one time in three (where the BVH's boxes are as tight as they get)
         let (e1, e2) = if rng.unit() < 0.3 {
             let axes = [DVec3::X, DVec3::Y, DVec3::Z];
@@ -425,8 +428,9 @@ fn sphere_reach_holds_every_accepted_ray() {
     };
     let mut cases = 0;
     while cases < 1000 {
-        let r = rng.log(-4.0, 4.0);
-        let centre = rng.direction() * rng.log(-3.0, 6.0);
+        let scale = rng.log(-10.0, 10.0);
+        let r = rng.log(-4.0, 4.0) * scale;
+        let centre = rng.direction() * rng.log(-3.0, 6.0) * scale;
         let l = match rng.below(4) {
             0 => r * (1.0 + rng.log(-9.0, -1.0)),
             1 => r * rng.range(0.0, 0.99),
@@ -492,4 +496,47 @@ fn sphere_reach_holds_every_accepted_ray() {
         seen.widened
     );
     assert!(seen.closest < 1.01, "{}", seen.closest);
+}
+
+/// [`arc_max`] bounds `n . d` over every point of the arc, and is the largest of them, within
+/// rounding (or within its short-arc bound below 1e-6 rad): arcs from 1e-9 rad to most of a
+/// half turn, `n` anywhere, 2,000 points of each arc sampled (its ends among them); the
+/// largest lies inside the arc for hundreds of them.
+#[test]
+fn arc_max_is_the_largest_over_the_arc() {
+    let mut rng = Rng(0x5EED_0005);
+    let (mut peaks, mut short) = (0, 0);
+    for _ in 0..3000 {
+        let a = rng.direction();
+        let w = if rng.unit() < 0.5 {
+            rng.log(-9.0, 3f64.log10())
+        } else {
+            rng.range(0.01, 3.0)
+        };
+        let b = a.rotate_axis(a.any_orthonormal_vector(), w);
+        let n = rng.direction() * rng.range(0.5, 1.5);
+        let bound = arc_max((a, n.dot(a)), (b, n.dot(b)), n);
+        let axis = a.cross(b).normalize();
+        let sampled = (0..=2000)
+            .map(|i| a.rotate_axis(axis, w * i as f64 / 2000.0).dot(n))
+            .fold(f64::NEG_INFINITY, f64::max);
+        assert!(bound >= sampled - 1e-14, "w {w:e}: {bound} < {sampled}");
+        let step = w / 2000.0;
+        // (the sampled largest is within a step's curvature of the true one)
+        let slack = if w < 1e-6 {
+            n.length() * w
+        } else {
+            1e-12 + n.length() * step * step
+        };
+        assert!(
+            bound <= sampled + slack,
+            "w {w:e}: {bound} > {sampled} + {slack:e}"
+        );
+        peaks += usize::from(sampled > n.dot(a).max(n.dot(b)) + 1e-15);
+        short += usize::from(w < 1e-6);
+    }
+    assert!(
+        peaks > 100 && short > 300,
+        "{peaks} peaks inside, {short} short arcs"
+    );
 }
