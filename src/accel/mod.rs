@@ -16,13 +16,11 @@
 //! between them, for every kernel and precision, and `--precision auto` re-decides the same
 //! pixels (tests/accel.rs; tests/accel_random.rs over random cameras).
 //!
-//! `auto` picks `tiles` from [`AUTO_MIN`] primitives on, `none` below. Measured (README
-//! "Acceleration", `scripts/accel_table.py`, 1 thread, 1920x1080): with one primitive (scene7)
-//! any structure is overhead; from two on, `tiles` renders every measured scene faster than
-//! `bvh` (1.8x to 6.8x), and its setup is parallel and faster from tens of thousands of
-//! primitives on (3.3M triangles on 2 threads: 0.68 s against 5.4 s). The BVH stays for `--accel bvh`: it
-//! renders dense meshes of millions of triangles faster once built (92 against 148 ms there),
-//! which pays only for many renders of one setup.
+//! `auto` picks `tiles` from [`AUTO_MIN`] primitives on, `none` below. Measured
+//! (docs/performance.md, "Acceleration", `scripts/accel_table.py`, 1 thread): with one
+//! primitive (scene7) any structure is overhead; from two on, `tiles` renders every measured
+//! scene faster than `bvh`, the 3.3M-triangle armadillo included, and its setup is parallel.
+//! The BVH stays for `--accel bvh` and as a second culled path the tests hold to `none`.
 
 pub(crate) mod build;
 pub(crate) mod bvh;
