@@ -65,12 +65,32 @@ impl Camera {
         height: u32,
         fov_deg: Option<f64>,
     ) -> Result<Camera> {
+        let spec = CameraSpec {
+            fov_deg: fov_deg.or(scene.camera.fov_deg),
+            ..scene.camera
+        };
+        Camera::look_at(&spec, width, height)
+    }
+
+    /// The camera `spec` describes (eye, look, up and its fov, else [`DEFAULT_FOV`]) for a
+    /// `width` x `height` image: a view of a scene other than its own `camera` line. Fails,
+    /// naming what is wrong, on a spec `scene::validate::camera` refuses (eye on look, up
+    /// parallel to the view, non-finite values), a size outside `1..=limits::MAX_SIDE` per side
+    /// or past `limits::MAX_PIXELS`, or a field of view outside (0, 180) degrees.
+    pub fn look_at(spec: &CameraSpec, width: u32, height: u32) -> Result<Camera> {
         crate::limits::check_size(width as u64, height as u64)
             .map_err(|why| Error::usage(format!("image size {width}x{height}: {why}")))?;
-        let fov = fov_deg.or(scene.camera.fov_deg).unwrap_or(DEFAULT_FOV);
+        let finite = [spec.eye, spec.look, spec.up].iter().all(|v| v.is_finite());
+        if !finite {
+            return Err(Error::usage(
+                "camera: eye, look and up must be finite".to_string(),
+            ));
+        }
+        crate::scene::validate::camera(spec).map_err(|m| Error::usage(format!("camera: {m}")))?;
+        let fov = spec.fov_deg.unwrap_or(DEFAULT_FOV);
         crate::scene::validate::fov(fov)
             .map_err(|m| Error::usage(format!("field of view {fov}: {m}")))?;
-        Ok(Camera::new(&scene.camera, fov, width, height))
+        Ok(Camera::new(spec, fov, width, height))
     }
 
     /// The camera of a validated spec (`scene::validate::camera` has accepted it) with a

@@ -118,8 +118,8 @@ pub use accel::Accel;
 pub use camera::{Camera, DEFAULT_FOV};
 pub use error::{Error, Result};
 pub use frame::Frame;
-pub use render::{Kernel, Method, Options, Renderer};
-pub use scene::{Scene, load_scene, parse_scene};
+pub use render::{Kernel, Method, Options, Renderer, Views};
+pub use scene::{CameraSpec, Scene, load_scene, parse_scene};
 pub use shade::{ColorMode, Variation, shade};
 
 /// Runs the lanecast command line (feature `cli`) on a full argument list (program name

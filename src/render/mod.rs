@@ -14,12 +14,14 @@ pub mod method;
 pub mod redecide;
 mod renderer;
 mod setup;
+mod views;
 pub mod wide64;
 
 pub use crate::frame::Frame;
 pub use method::Method;
 pub use renderer::{Options, Renderer};
 pub use setup::{Kernel, Setup, Structure, prepare_f64};
+pub use views::Views;
 
 use crate::accel::bvh::{trace_bvh_x1, trace_bvh_x8};
 use crate::accel::tiles::{PacketLists, TILE_H, TILE_W};

@@ -25,6 +25,28 @@ pub struct Options {
     pub method: Method,
 }
 
+impl Options {
+    /// Fails when the options contradict each other: a method other than the default with a
+    /// scalar kernel, or an acceleration with a brute-force method.
+    pub fn check(&self) -> crate::Result<()> {
+        match (self.method, self.kernel) {
+            (m, Kernel::Packet)
+                if m.is_brute_force() && matches!(self.accel, Accel::Bvh | Accel::Tiles) =>
+            {
+                Err(crate::Error::usage(format!(
+                    "method {} tests every primitive; it takes no acceleration",
+                    m.name()
+                )))
+            }
+            (Method::Default | Method::Auto, _) | (_, Kernel::Packet) => Ok(()),
+            (m, _) => Err(crate::Error::usage(format!(
+                "method {} applies to the packet kernel only",
+                m.name()
+            ))),
+        }
+    }
+}
+
 impl Default for Options {
     fn default() -> Options {
         Options {
@@ -61,15 +83,8 @@ impl<'s> Renderer<'s> {
         camera: &crate::camera::Camera,
         options: &Options,
     ) -> crate::Result<Renderer<'s>> {
+        options.check()?;
         let job = match (options.method, options.kernel) {
-            (m, Kernel::Packet)
-                if m.is_brute_force() && matches!(options.accel, Accel::Bvh | Accel::Tiles) =>
-            {
-                return Err(crate::Error::usage(format!(
-                    "method {} tests every primitive; it takes no acceleration",
-                    m.name()
-                )));
-            }
             (Method::Auto, Kernel::Packet) => {
                 return Ok(Renderer::auto(scene, camera, options.accel));
             }
@@ -77,13 +92,7 @@ impl<'s> Renderer<'s> {
                 Box::new(Setup::with_accel(kernel, options.accel, scene, camera)),
                 None,
             ),
-            (m, Kernel::Packet) => Job::Method(m.prepare_with(scene, camera, options.accel)),
-            (m, _) => {
-                return Err(crate::Error::usage(format!(
-                    "method {} applies to the packet kernel only",
-                    m.name()
-                )));
-            }
+            (m, _) => Job::Method(m.prepare_with(scene, camera, options.accel)),
         };
         Ok(Renderer {
             width: camera.width as usize,

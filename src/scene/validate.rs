@@ -254,9 +254,13 @@ pub fn camera(c: &CameraSpec) -> Result<(), String> {
 /// by its line. Polygons with an area that underflows f32 are fine: their edge planes are
 /// normalised in f64 before rounding.
 pub fn f32_range(scene: &Scene) -> Result<(), Error> {
+    f32_range_from(scene, scene.camera.eye)
+}
+
+/// [`f32_range`] for a camera at `eye` rather than the scene's own (a view of the scene).
+pub fn f32_range_from(scene: &Scene, eye: DVec3) -> Result<(), Error> {
     // Checked on all threads; `find_first` keeps "the first offending primitive" exact.
     use crate::par::prelude::*;
-    let eye = scene.camera.eye;
     let first = scene
         .shapes
         .par_chunks(0..scene.shapes.len(), 1 << 12)

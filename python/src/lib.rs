@@ -1,0 +1,1 @@
+//! lanecast for Python (work in progress).

@@ -1,0 +1,161 @@
+//! Many views of one scene: [`Views`] holds a loaded scene and the render options, and renders
+//! any number of cameras (a turntable, a camera path, a dataset of poses) one after another,
+//! each frame's buffers recycled for the next.
+//!
+//! Every view is rendered exactly as a one-camera [`Renderer`] for the same camera and options
+//! renders it: ids and depths are bit-identical to `lanecast -i SCENE` with that camera, at any
+//! thread count (tests/views.rs). What depends on the camera (the eye-relative primitive
+//! constants, the tiles' bins) is built per view; what does not (the scene, its validation) is
+//! done once.
+
+use super::{Frame, Options, Renderer};
+use crate::camera::Camera;
+use crate::error::Result;
+use crate::scene::Scene;
+use std::sync::Mutex;
+
+/// A scene prepared for rendering from many cameras. Borrows the scene: `--precision auto`
+/// re-decides hits from its shapes.
+pub struct Views<'s> {
+    scene: &'s Scene,
+    options: Options,
+    /// The last frame handed back ([`Views::recycle`]), whose buffers the next view fills.
+    spare: Mutex<Option<Frame<f32>>>,
+}
+
+impl<'s> Views<'s> {
+    /// Prepares `scene` for views rendered with `options`. Fails when the options contradict
+    /// each other, as [`Renderer::new`] does.
+    pub fn new(scene: &'s Scene, options: &Options) -> Result<Views<'s>> {
+        options.check()?;
+        Ok(Views {
+            scene,
+            options: *options,
+            spare: Mutex::new(None),
+        })
+    }
+
+    /// The scene the views show.
+    pub fn scene(&self) -> &'s Scene {
+        self.scene
+    }
+
+    /// The options every view is rendered with.
+    pub fn options(&self) -> &Options {
+        &self.options
+    }
+
+    /// Checks that the f32 kernels can represent every primitive seen from `camera`'s eye
+    /// (`scene::validate::f32_range`, relative to this eye): the error names the first
+    /// primitive that cannot be. [`Views::render`] checks this too.
+    pub fn check(&self, camera: &Camera) -> Result<()> {
+        if camera.eye == self.scene.camera.eye {
+            return Ok(()); // checked when the scene was loaded
+        }
+        crate::scene::validate::f32_range_from(self.scene, camera.eye)
+    }
+
+    /// Renders the view from `camera` (its own size) on the current rayon pool: the same ids
+    /// and depths as `Renderer::new(scene, camera, options)?.render()`.
+    pub fn render(&self, camera: &Camera) -> Result<Frame<f32>> {
+        self.check(camera)?;
+        let renderer = self.renderer(camera)?;
+        if let Some(f) = self.take_spare() {
+            renderer.recycle(f);
+        }
+        Ok(renderer.render())
+    }
+
+    /// The prepared one-camera renderer for `camera` (the per-view setup), for a caller that
+    /// wants its counters or progress ([`Renderer::render_marking`]). The eye's range is not
+    /// checked here: call [`Views::check`] first.
+    pub fn renderer(&self, camera: &Camera) -> Result<Renderer<'s>> {
+        let renderer = Renderer::new(self.scene, camera, &self.options)?;
+        Ok(renderer)
+    }
+
+    /// Hands a frame back once its caller is done with it: the next view fills its buffers
+    /// when it has the same size.
+    pub fn recycle(&self, frame: Frame<f32>) {
+        *self.spare.lock().unwrap_or_else(|e| e.into_inner()) = Some(frame);
+    }
+
+    fn take_spare(&self) -> Option<Frame<f32>> {
+        self.spare.lock().unwrap_or_else(|e| e.into_inner()).take()
+    }
+}
+
+impl std::fmt::Debug for Views<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Views")
+            .field("scene", &self.scene.source)
+            .field("options", &self.options)
+            .finish()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{CameraSpec, parse_scene};
+    use glam::DVec3;
+    use std::path::Path;
+
+    const TEXT: &str = "camera eye 0 2 8 look 0 1 0 up 0 1 0 fov 60\n\
+                        sphere 0 1 0 1\n\
+                        triangle -3 0 -2  3 0 -2  0 3 -2\n\
+                        quad -4 0 -4  4 0 -4  4 0 4  -4 0 4\n";
+
+    #[test]
+    fn every_view_renders_as_a_renderer_of_its_own() {
+        let scene = parse_scene(TEXT, Path::new("v.sc")).unwrap();
+        let options = Options::default();
+        let views = Views::new(&scene, &options).unwrap();
+        for k in 0..12 {
+            let a = k as f64 * 0.5;
+            let spec = CameraSpec {
+                eye: DVec3::new(8.0 * a.sin(), 2.0 + k as f64 * 0.3, 8.0 * a.cos()),
+                look: DVec3::new(0.0, 1.0, 0.0),
+                up: DVec3::Y,
+                fov_deg: Some(20.0 + 10.0 * k as f64),
+            };
+            let camera = Camera::look_at(&spec, 37 + k, 23 + 2 * k).unwrap();
+            let frame = views.render(&camera).unwrap();
+            let alone = Renderer::new(&scene, &camera, &options).unwrap().render();
+            assert_eq!(frame.ids, alone.ids, "view {k}");
+            let bits = |d: &[f32]| d.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&frame.depth), bits(&alone.depth), "view {k}");
+            assert!(frame.ids.iter().any(|&i| i >= 0), "view {k} sees the scene");
+            views.recycle(frame);
+        }
+    }
+
+    #[test]
+    fn a_bad_camera_is_refused_by_name() {
+        let scene = parse_scene(TEXT, Path::new("v.sc")).unwrap();
+        let on_look = CameraSpec {
+            eye: DVec3::ONE,
+            look: DVec3::ONE,
+            up: DVec3::Y,
+            fov_deg: None,
+        };
+        let e = Camera::look_at(&on_look, 8, 8).unwrap_err().to_string();
+        assert!(e.contains("same point"), "{e}");
+        let parallel = CameraSpec {
+            up: DVec3::Y,
+            look: DVec3::new(0.0, 9.0, 0.0),
+            eye: DVec3::ZERO,
+            fov_deg: None,
+        };
+        let e = Camera::look_at(&parallel, 8, 8).unwrap_err().to_string();
+        assert!(e.contains("parallel"), "{e}");
+        let far = CameraSpec {
+            eye: DVec3::new(0.0, 0.0, 2e18),
+            ..scene.camera
+        };
+        let camera = Camera::look_at(&far, 8, 8).unwrap();
+        let views = Views::new(&scene, &Options::default()).unwrap();
+        let e = views.render(&camera).unwrap_err().to_string();
+        assert!(e.contains("v.sc:2"), "{e}");
+    }
+}

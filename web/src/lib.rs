@@ -1,0 +1,1 @@
+//! lanecast in the browser (work in progress).
