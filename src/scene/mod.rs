@@ -7,6 +7,7 @@
 #[cfg(test)]
 mod chunk_tests;
 mod chunks;
+mod memory;
 pub(crate) mod mesh;
 mod number;
 mod obj;
@@ -18,6 +19,7 @@ mod statement;
 pub(crate) mod validate;
 
 use glam::DVec3;
+pub use memory::{parse_mesh_bytes, parse_scene_with};
 pub use shapes::{Iter, Mesh, Shapes};
 use std::path::PathBuf;
 

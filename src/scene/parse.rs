@@ -38,6 +38,7 @@
 //! really is passed before that point.
 
 use super::chunks::{self, Budget};
+use super::memory::MeshFiles;
 use super::scene_chunk::{ChunkOut, Event, StopKind, parse_chunk, second_camera};
 use super::shapes::{Mesh, Part, Shapes};
 use super::statement::CAMERA_SYNTAX;
@@ -76,7 +77,14 @@ pub fn load_scene_meshes(path: &Path) -> Result<(Scene, Vec<PathBuf>)> {
     let bytes = chunks::read_file(path, MAX_SCENE_BYTES, "read scene", Some(SCENE_TEXT))?;
     let mut meshes = Vec::new();
     let chunk = chunks::chunk_bytes(bytes.len());
-    let scene = parse_bytes_meshes(&bytes, path, MAX_PRIMITIVES, chunk, &mut meshes)?;
+    let scene = parse_bytes_meshes(
+        &bytes,
+        path,
+        MAX_PRIMITIVES,
+        chunk,
+        MeshFiles::Disk,
+        &mut meshes,
+    )?;
     Ok((scene, meshes))
 }
 
@@ -104,7 +112,14 @@ fn read_stdin_scene() -> Result<(Scene, Vec<PathBuf>)> {
     }
     let mut meshes = Vec::new();
     let chunk = chunks::chunk_bytes(bytes.len());
-    let scene = parse_bytes_meshes(&bytes, name, MAX_PRIMITIVES, chunk, &mut meshes)?;
+    let scene = parse_bytes_meshes(
+        &bytes,
+        name,
+        MAX_PRIMITIVES,
+        chunk,
+        MeshFiles::Disk,
+        &mut meshes,
+    )?;
     Ok((scene, meshes))
 }
 
@@ -154,15 +169,24 @@ pub(super) fn parse_bytes(
     max_primitives: usize,
     chunk_bytes: usize,
 ) -> Result<Scene> {
-    parse_bytes_meshes(bytes, file, max_primitives, chunk_bytes, &mut Vec::new())
+    parse_bytes_meshes(
+        bytes,
+        file,
+        max_primitives,
+        chunk_bytes,
+        MeshFiles::Disk,
+        &mut Vec::new(),
+    )
 }
 
-/// [`parse_bytes`], recording in `meshes` the path of every mesh file read.
-fn parse_bytes_meshes(
+/// [`parse_bytes`], the `mesh` files read from `files`, recording in `meshes` the path of
+/// every mesh file read.
+pub(super) fn parse_bytes_meshes(
     bytes: &[u8],
     file: &Path,
     max_primitives: usize,
     chunk_bytes: usize,
+    files: MeshFiles,
     meshes: &mut Vec<PathBuf>,
 ) -> Result<Scene> {
     if bytes.len() as u64 > MAX_SCENE_BYTES {
@@ -180,7 +204,7 @@ fn parse_bytes_meshes(
         return Err(utf8_error(file, bytes, bom + bad));
     }
     let outs: Vec<ChunkOut> = outs.into_iter().flatten().collect();
-    let line = match join(outs, file, max_primitives, meshes) {
+    let line = match join(outs, file, max_primitives, files, meshes) {
         Ok(scene) => return Ok(scene),
         Err(Halt::Error(e)) => return Err(e),
         Err(Halt::Rerun) => {
@@ -200,7 +224,7 @@ fn parse_bytes_meshes(
                 .last()
                 .and_then(|o| o.stop.as_ref())
                 .map_or(0, |s| s.line);
-            match join(outs, file, max_primitives, meshes) {
+            match join(outs, file, max_primitives, files, meshes) {
                 Ok(scene) => return Ok(scene),
                 Err(Halt::Error(e)) => return Err(e),
                 // In order, the budget runs out only past the limit, which `join` finds first.
@@ -242,6 +266,7 @@ fn join(
     mut outs: Vec<ChunkOut>,
     file: &Path,
     max: usize,
+    files: MeshFiles,
     meshes: &mut Vec<PathBuf>,
 ) -> std::result::Result<Scene, Halt> {
     meshes.clear();
@@ -281,7 +306,7 @@ fn join(
                 Event::Mesh { line, at, path } => {
                     place(at, &mut total, &mut pieces)?;
                     let path = file.parent().map_or_else(|| path.into(), |d| d.join(path));
-                    let mesh = load_mesh(file, line, &path, max - total, &mut warnings)?;
+                    let mesh = load_mesh(file, line, &path, max - total, files, &mut warnings)?;
                     meshes.push(path);
                     total += mesh.len();
                     pieces.push(Piece::Mesh(mesh, line));
@@ -348,7 +373,12 @@ const FRAMING_HALF_ANGLE_DEG: f64 = 15.0;
 /// triangles, in file order, seen by [`framing_camera`]. Shapes carry line 0 (no scene line); range errors name the
 /// face instead (`validate::f32_range`).
 fn load_mesh_scene(path: &Path) -> Result<Scene> {
-    let (mesh, degenerate) = mesh::load_mesh(path, MAX_PRIMITIVES)?;
+    mesh_scene(path, mesh::load_mesh(path, MAX_PRIMITIVES)?)
+}
+
+/// The scene of a mesh rendered on its own, from its triangles and degenerate count as read
+/// from `path` ([`load_mesh_scene`]).
+pub(super) fn mesh_scene(path: &Path, (mesh, degenerate): (Mesh, usize)) -> Result<Scene> {
     let camera = framing_camera(&mesh).ok_or_else(|| Error::InputFile {
         file: path.to_path_buf(),
         msg: "no faces with extent to frame; a mesh to render alone needs at least one".into(),
@@ -404,11 +434,12 @@ fn load_mesh(
     line: usize,
     path: &Path,
     room: usize,
+    files: MeshFiles,
     warnings: &mut Vec<String>,
 ) -> Result<Mesh> {
     // A mesh that cannot be read is an I/O error like a scene that cannot be read (exit 1),
     // reported at the line naming it.
-    let (mesh, degenerate) = mesh::load_mesh(path, room).map_err(|e| match e {
+    let (mesh, degenerate) = files.load(path, room).map_err(|e| match e {
         Error::Io { source, .. } => Error::IoAt {
             file: file.to_path_buf(),
             line,
