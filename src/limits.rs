@@ -30,6 +30,9 @@ pub const BYTES_PER_PIXEL: u64 = 12;
 /// Most primitives in one scene (ids are i32 in the `.npy` buffers; 2^24 keeps every id exact
 /// in f32 too).
 pub const MAX_PRIMITIVES: usize = 1 << 24;
+/// Most views in one run (`--views` lines, `--orbit N`): output names are numbered, and each
+/// view's camera is kept in memory (about 100 bytes each).
+pub const MAX_VIEWS: usize = 1_000_000;
 /// Longest line in a scene file, in bytes.
 pub const MAX_LINE_BYTES: usize = 4096;
 /// Largest scene file, in bytes.

@@ -4,6 +4,7 @@
 //! lines of the file, whatever its type. Parsing (`parse.rs`) turns text into this form;
 //! validation (`validate.rs`) holds the geometric rules and their tolerances.
 
+mod arrays;
 #[cfg(test)]
 mod chunk_tests;
 mod chunks;
@@ -17,8 +18,10 @@ mod scene_chunk;
 mod shapes;
 mod statement;
 pub(crate) mod validate;
+pub mod views;
 
 use glam::DVec3;
+pub use arrays::scene_from_arrays;
 pub use memory::{parse_mesh_bytes, parse_scene_with};
 pub use shapes::{Iter, Mesh, Shapes};
 use std::path::PathBuf;
