@@ -1,0 +1,127 @@
+"""Renders from Python against the native command line, byte for byte."""
+
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import lanecast
+from conftest import MESH_SCENES, SCENES, SEED_SCENES, same_bits
+
+
+@pytest.mark.parametrize("path", SEED_SCENES + MESH_SCENES, ids=lambda p: p.name)
+def test_scene_renders_as_the_command_line(cli, tmp_path, path):
+    scene = lanecast.Scene.load(path)
+    ids, depth = cli(path, tmp_path, size=(160, 120))
+    out = scene.render(width=160, height=120)
+    assert same_bits(out.ids, ids)
+    assert same_bits(out.depth, depth)
+    assert (out.ids >= 0).any(), "the view shows the scene"
+    # background is exactly where depth is +inf
+    assert np.array_equal(out.ids == -1, np.isinf(out.depth))
+
+
+@pytest.mark.parametrize("precision", ["f32", "f64", "auto"])
+def test_precisions_are_the_command_lines(cli, tmp_path, precision):
+    path = SCENES / "scene3.sc"
+    ids, depth = cli(path, tmp_path, size=(96, 64), args=["--precision", precision])
+    out = lanecast.Scene.load(path).render(width=96, height=64, precision=precision)
+    assert same_bits(out.ids, ids) and same_bits(out.depth, depth)
+
+
+def test_a_camera_of_ones_own_is_the_command_lines(cli, tmp_path):
+    path = SCENES / "bunny.sc"
+    scene = lanecast.Scene.load(path)
+    cam = lanecast.Camera(eye=(0.25, 0.2, 0.3), look=(-0.02, 0.1, 0.0), up=(0, 1, 0.2), fov=35)
+    ids, depth = cli(path, tmp_path, size=(200, 150),
+                     args=["--eye", "0.25,0.2,0.3", "--look", "-0.02,0.1,0", "--up", "0,1,0.2",
+                           "-fov", "35"])
+    out = scene.render(cam, 200, 150)
+    assert same_bits(out.ids, ids) and same_bits(out.depth, depth)
+    assert (out.ids >= 0).sum() > 1000
+
+
+def test_a_mesh_file_alone(cli, tmp_path):
+    path = SCENES / "meshes" / "teapot.obj"
+    ids, depth = cli(path, tmp_path, size=(120, 90))
+    out = lanecast.Scene.load(path).render(width=120, height=90)
+    assert same_bits(out.ids, ids) and same_bits(out.depth, depth)
+
+
+def test_image_is_the_command_lines(cli, tmp_path):
+    path = SCENES / "scene2.sc"
+    _, _, img = cli(path, tmp_path, size=(64, 48), image=True, args=["-cm", "ordered"])
+    out = lanecast.Scene.load(path).render(width=64, height=48)
+    mine = out.image(color_mode="ordered")
+    assert mine.dtype == np.uint8 and mine.shape == (48, 64, 3)
+    assert np.array_equal(mine, img)
+    _, _, img = cli(path, tmp_path, size=(64, 48), image=True, args=["--seed", "7", "-cv", "log"])
+    assert np.array_equal(out.image(seed=7, variation="log"), img)
+
+
+def test_buffers_are_handed_over_not_copied():
+    out = lanecast.Scene.load(SCENES / "scene1.sc").render(width=32, height=24)
+    for a in (out.ids, out.depth):
+        assert a.flags.c_contiguous and a.flags.writeable
+    assert out.ids.dtype == np.int32 and out.depth.dtype == np.float32
+    assert out.ids.shape == (24, 32)
+    # The (H, W) array is a view of the one-dimensional buffer moved from Rust.
+    assert out.ids.base is not None
+
+
+def test_zdepth_of_a_wall_facing_the_camera_is_its_distance():
+    # A quad 4 units in front of the eye, perpendicular to the view axis.
+    v = np.array([[-50, -50, -4], [50, -50, -4], [50, 50, -4], [-50, 50, -4]], float)
+    cam = lanecast.Camera(eye=(0, 0, 0), look=(0, 0, -1), up=(0, 1, 0), fov=70)
+    scene = lanecast.Scene.from_arrays(vertices=v, quads=[[0, 1, 2, 3]], camera=cam)
+    out = scene.render(cam, 64, 48, zdepth=True)
+    assert (out.ids == 0).all()
+    assert np.allclose(out.zdepth, 4.0, rtol=1e-6)
+    # along the ray it is longer off-axis
+    assert out.depth[0, 0] > 4.2 and abs(out.depth[24, 32] - 4.0) < 1e-3
+    plain = scene.render(cam, 64, 48)
+    with pytest.raises(AttributeError, match="zdepth=True"):
+        plain.zdepth
+
+
+def test_threads_give_the_same_bits():
+    scene = lanecast.Scene.load(SCENES / "bunny.sc")
+    a = scene.render(width=160, height=120, threads=1)
+    b = scene.render(width=160, height=120, threads=2)
+    assert same_bits(a.ids, b.ids) and same_bits(a.depth, b.depth)
+    with pytest.raises(ValueError, match="threads=0"):
+        scene.render(threads=0)
+
+
+def test_the_gil_is_released_while_rendering():
+    scene = lanecast.Scene.load(SCENES / "bunny.sc")
+    cams = [lanecast.Camera(eye=(0.3 * np.sin(a), 0.15, 0.3 * np.cos(a)), look=(-0.02, 0.1, 0))
+            for a in np.linspace(0, 6, 30)]
+    done = []
+    t = threading.Thread(target=lambda: done.append(scene.render_views(cams, 320, 240, threads=1)))
+    t.start()
+    time.sleep(0.01)
+    ticks = 0
+    while t.is_alive():
+        ticks += 1
+    t.join()
+    assert done and done[0].ids.shape == (30, 240, 320)
+    # With the GIL held, this loop could not run during the render at all.
+    assert ticks > 10_000, ticks
+
+
+def test_bad_arguments_are_value_errors():
+    scene = lanecast.Scene.load(SCENES / "scene1.sc")
+    with pytest.raises(ValueError, match="precision"):
+        scene.render(precision="f16")
+    with pytest.raises(ValueError, match="image size"):
+        scene.render(width=0, height=10)
+    with pytest.raises(ValueError, match="camera"):
+        scene.render("not a camera")
+    with pytest.raises(ValueError, match="same point"):
+        lanecast.Camera(eye=(1, 2, 3), look=(1, 2, 3))
+    with pytest.raises(ValueError, match="field of view"):
+        lanecast.Camera(eye=(0, 0, 1), look=(0, 0, 0), fov=180)
+    with pytest.raises(ValueError, match="color_mode"):
+        scene.render(width=8, height=8).image(color_mode="pink")
