@@ -11,6 +11,8 @@
 //! error (exit 2) that names it and only flags that were typed. README "Valid flag
 //! combinations" is the table of these rules.
 
+mod views;
+
 use crate::error::{Error, Result};
 use crate::output::ImageFormat;
 use crate::shade::{ColorMode, Variation};
@@ -18,6 +20,7 @@ use clap::parser::ValueSource;
 use clap::{ArgMatches, Args, CommandFactory, FromArgMatches, Parser, Subcommand, ValueEnum};
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
+pub use views::ViewSource;
 
 /// The original's single-dash long options and their GNU long forms.
 pub const SINGLE_DASH: [(&str, &str); 5] = [
@@ -212,6 +215,20 @@ struct RenderArgs {
     /// threads, SIMD width, phase times, best and median render, rays/s, peak memory.
     #[arg(long, value_name = "FILE.json")]
     stats: Option<PathBuf>,
+    /// Render one view per camera line of FILE (`camera eye X Y Z look X Y Z up X Y Z [fov
+    /// DEG]`), all from one load of the scene. Outputs take numbered names (-o
+    /// frames/view_%05d.png, views counted from 0) or -o - (images one after another).
+    #[arg(long, value_name = "FILE", conflicts_with = "orbit")]
+    views: Option<PathBuf>,
+    /// Render N views on a turntable: the camera turned about its up axis through its look
+    /// point, at its distance and height. Outputs as with --views.
+    #[arg(long, value_name = "N",
+          value_parser = clap::value_parser!(u32).range(1..=crate::limits::MAX_VIEWS as i64))]
+    orbit: Option<u32>,
+    /// With --views or --orbit: leave out every view whose outputs all exist (a rerun picks up
+    /// where an interrupted run stopped).
+    #[arg(long)]
+    skip_existing: bool,
 }
 
 #[derive(Args, Debug)]
@@ -338,6 +355,10 @@ pub struct RenderSettings {
     pub depth: Option<PathBuf>,
     pub repeat: u32,
     pub stats: Option<PathBuf>,
+    /// Many views (`--views`, `--orbit`); `None` for the scene's one camera.
+    pub views: Option<views::ViewSource>,
+    /// `--skip-existing`.
+    pub skip_existing: bool,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -431,8 +452,10 @@ fn parse_raw(raw: &[OsString]) -> Result<Command> {
             let r = cli.render;
             let flag = method_flag(&r.view, &typed);
             let view = view(r.view, &typed, r.kernel)?;
+            let source = views::source(r.views, r.orbit);
             let output = match r.output {
                 Some(o) => o,
+                None if source.is_some() => views::default_output(&view.input)?,
                 None if view.input == Path::new(crate::scene::parse::STDIN) => {
                     return Err(Error::usage(
                         "-i -: a scene from standard input has no file name to put the image \
@@ -455,8 +478,11 @@ fn parse_raw(raw: &[OsString]) -> Result<Command> {
                 repeat: r.repeat,
                 stats: r.stats,
                 stdout_format,
+                views: source,
+                skip_existing: r.skip_existing,
             };
             check_render(&settings, &typed, &flag)?;
+            views::check(&settings, &typed)?;
             Ok(Command::Render(settings))
         }
     }

@@ -35,14 +35,18 @@ use crate::{Error, Result};
 
 mod lock;
 mod npy;
+mod pattern;
 mod set;
 mod stale;
 use lock::lock_wait;
 use npy::npy_fill;
 pub use npy::{npy_f32, npy_i32, write_npy_f32, write_npy_i32};
+pub use pattern::Pattern;
 #[cfg(feature = "cli")]
 pub(crate) use set::OutputKind;
 pub(crate) use set::OutputSet;
+#[cfg(feature = "cli")]
+pub(crate) use set::check_not_read;
 
 /// Image formats lanecast writes, chosen by the output file's extension.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -294,6 +298,12 @@ pub(crate) fn same_file(a: &Path, b: &Path) -> bool {
         (Some(ra), Some(rb)) => ra == rb,
         _ => a == b,
     }
+}
+
+/// What names the same file as `path`, for telling many output names apart: [`resolve`]'s
+/// answer, else `path` as given.
+pub(crate) fn identity(path: &Path) -> PathBuf {
+    resolve(path).unwrap_or_else(|| path.to_path_buf())
 }
 
 /// `path` made absolute and free of links: the whole path if it exists, else its canonical

@@ -38,6 +38,40 @@ pub struct Stats {
     /// Pixels whose f32 hit was decided again in f64 (`--precision auto` with the simd kernel;
     /// `None` where nothing is re-decided).
     pub redecided: Option<usize>,
+    /// Per-view times of a many-view run (`--views`, `--orbit`); `None` for one view.
+    pub views: Option<ViewTimes>,
+}
+
+/// The times of a many-view run's views, in seconds.
+#[derive(Debug, Clone, Default)]
+pub struct ViewTimes {
+    /// Each rendered view's (setup, render, output) times, in order: setup prepares the scene
+    /// for its camera, render traces its rays, output shades, encodes, writes and commits.
+    pub each: Vec<[f64; 3]>,
+    /// Views left out by `--skip-existing`.
+    pub skipped: usize,
+}
+
+impl ViewTimes {
+    /// Setup plus render of each view: the per-view cost, outputs excluded.
+    pub fn costs(&self) -> Vec<f64> {
+        self.each.iter().map(|t| t[0] + t[1]).collect()
+    }
+
+    /// The median of `costs` (NaN when no view rendered).
+    pub fn median_cost(&self) -> f64 {
+        median(self.costs())
+    }
+}
+
+/// The median of `v` (NaN when empty).
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    match v.len() {
+        0 => f64::NAN,
+        n if n % 2 == 1 => v[n / 2],
+        n => (v[n / 2 - 1] + v[n / 2]) / 2.0,
+    }
 }
 
 impl Stats {
@@ -46,13 +80,7 @@ impl Stats {
     }
 
     pub fn render_median(&self) -> f64 {
-        let mut r = self.renders.clone();
-        r.sort_by(f64::total_cmp);
-        match r.len() {
-            0 => f64::NAN,
-            n if n % 2 == 1 => r[n / 2],
-            n => (r[n / 2 - 1] + r[n / 2]) / 2.0,
-        }
+        median(self.renders.clone())
     }
 
     /// Primary rays per second of the best render.
@@ -110,7 +138,20 @@ impl Stats {
         }
         let total: f64 = self.phases.iter().map(|p| p.1).sum();
         let _ = writeln!(out, "  {:<7} {:>10.3} ms", "total", total * 1e3);
-        if self.renders.len() > 1 {
+        if let Some(v) = &self.views {
+            let costs = v.costs();
+            let _ = writeln!(
+                out,
+                "  {} rendered, {} skipped; per view (setup + render): first {:.3} ms, \
+                 median {:.3} ms, total {:.3} ms; outputs {:.3} ms",
+                count(v.each.len(), "view", "views"),
+                v.skipped,
+                costs.first().copied().unwrap_or(f64::NAN) * 1e3,
+                v.median_cost() * 1e3,
+                costs.iter().sum::<f64>() * 1e3,
+                v.each.iter().map(|t| t[2]).sum::<f64>() * 1e3,
+            );
+        } else if self.renders.len() > 1 {
             let _ = writeln!(
                 out,
                 "  render over {} repeats: best {:.3} ms, median {:.3} ms",
@@ -176,6 +217,20 @@ impl Stats {
             "rays_per_s": self.rays_per_s(),
             "peak_rss_bytes": peak_rss_kib().map(|k| k * 1024),
         });
+        let mut record = record;
+        if let Some(v) = &self.views {
+            let each: Vec<_> = v
+                .each
+                .iter()
+                .map(|t| serde_json::json!({"setup_s": t[0], "render_s": t[1], "output_s": t[2]}))
+                .collect();
+            record["views"] = serde_json::json!({
+                "rendered": v.each.len(),
+                "skipped": v.skipped,
+                "median_view_s": v.median_cost(),
+                "each": each,
+            });
+        }
         let mut out = serde_json::to_string_pretty(&record).expect("a JSON value always prints");
         out.push('\n');
         out

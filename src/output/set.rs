@@ -384,7 +384,7 @@ impl OutputSet {
 }
 
 /// Refuses `path` (the output of `flag`) when it names one of `reads` (description, path).
-fn check_not_read<'a>(
+pub(crate) fn check_not_read<'a>(
     flag: &str,
     path: &Path,
     reads: impl IntoIterator<Item = (&'a str, &'a Path)>,

@@ -59,11 +59,7 @@ impl<'s> Views<'s> {
     /// and depths as `Renderer::new(scene, camera, options)?.render()`.
     pub fn render(&self, camera: &Camera) -> Result<Frame<f32>> {
         self.check(camera)?;
-        let renderer = self.renderer(camera)?;
-        if let Some(f) = self.take_spare() {
-            renderer.recycle(f);
-        }
-        Ok(renderer.render())
+        Ok(self.renderer(camera)?.render())
     }
 
     /// The prepared one-camera renderer for `camera` (the per-view setup), for a caller that
@@ -71,6 +67,9 @@ impl<'s> Views<'s> {
     /// checked here: call [`Views::check`] first.
     pub fn renderer(&self, camera: &Camera) -> Result<Renderer<'s>> {
         let renderer = Renderer::new(self.scene, camera, &self.options)?;
+        if let Some(f) = self.take_spare() {
+            renderer.recycle(f);
+        }
         Ok(renderer)
     }
 

@@ -4,6 +4,7 @@
 
 mod compare;
 mod render;
+mod views;
 
 use crate::camera::Camera;
 use crate::cli::{Command, ViewSettings};

@@ -35,7 +35,7 @@ fn outputs(s: &RenderSettings) -> Vec<(&'static str, &Path, OutputKind)> {
 }
 
 /// The key of an output in the `--stats` record.
-fn stats_key(flag: &str) -> &'static str {
+pub(super) fn stats_key(flag: &str) -> &'static str {
     match flag {
         "--output" => "image",
         "--ids" => "ids",
@@ -45,7 +45,7 @@ fn stats_key(flag: &str) -> &'static str {
 }
 
 /// Checks the memory a render of `width` x `height` needs against `limits::MAX_PIXELS`.
-fn check_memory(width: u32, height: u32) -> Result<()> {
+pub(super) fn check_memory(width: u32, height: u32) -> Result<()> {
     let pixels = width as u64 * height as u64;
     if pixels > MAX_PIXELS {
         return Err(Error::usage(format!(
@@ -56,9 +56,32 @@ fn check_memory(width: u32, height: u32) -> Result<()> {
     Ok(())
 }
 
+/// Writes an image to standard output (`-o -`); `Ok(false)` when the reader has closed the
+/// pipe (`-o - | head -c 8`): it wants no more, and as with ripgrep that is a quiet end, not an
+/// error.
+pub(super) fn encode_to_stdout(
+    format: output::ImageFormat,
+    width: u32,
+    height: u32,
+    rgb: &[u8],
+) -> Result<bool> {
+    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+    let written = output::encode_image(&mut out, format, width, height, rgb)
+        .and_then(|()| std::io::Write::flush(&mut out));
+    match written {
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(false),
+        other => other
+            .map(|()| true)
+            .map_err(|e| Error::io("-", "write the image to standard output", e)),
+    }
+}
+
 /// Runs the render command. Every output is checked and its temporary file created before the
 /// scene is read; the outputs are renamed into place together at the end (`OutputSet`).
 pub(crate) fn render_command(s: &RenderSettings) -> Result<()> {
+    if let Some(source) = &s.views {
+        return super::views::views_command(s, source);
+    }
     // hardening (issue 5): Ctrl-C / SIGTERM remove pending temporary files, exit 130.
     output::install_interrupt_cleanup();
     check_memory(s.view.width, s.view.height)?;
@@ -158,15 +181,7 @@ pub(crate) fn render_command(s: &RenderSettings) -> Result<()> {
     set.commit()?;
     if let Some(format) = s.stdout_format {
         // `-o -`: after the files, so a failed file leaves nothing half-sent either
-        let mut out = std::io::BufWriter::new(std::io::stdout().lock());
-        let written = output::encode_image(&mut out, format, s.view.width, s.view.height, &rgb)
-            .and_then(|()| std::io::Write::flush(&mut out));
-        match written {
-            // the reader closed the pipe (`-o - | head -c 8`): it wanted no more; as ripgrep
-            // does, that is a quiet end, not an error
-            Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => {}
-            other => other.map_err(|e| Error::io("-", "write the image to standard output", e))?,
-        }
+        encode_to_stdout(format, s.view.width, s.view.height, &rgb)?;
     }
     if s.time {
         eprint!("{}", stats.text());

@@ -20,8 +20,8 @@ mod statement;
 pub(crate) mod validate;
 pub mod views;
 
-use glam::DVec3;
 pub use arrays::scene_from_arrays;
+use glam::DVec3;
 pub use memory::{parse_mesh_bytes, parse_scene_with};
 pub use shapes::{Iter, Mesh, Shapes};
 use std::path::PathBuf;

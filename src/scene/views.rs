@@ -37,7 +37,12 @@ pub fn load_views(path: &Path) -> Result<Vec<ViewLine>> {
             .iter()
             .filter(|&&b| b == b'\n')
             .count();
-        Error::input(path, line + 1, 0, "not valid UTF-8; views files must be UTF-8 text")
+        Error::input(
+            path,
+            line + 1,
+            0,
+            "not valid UTF-8; views files must be UTF-8 text",
+        )
     })?;
     parse_views(text, path)
 }
@@ -185,8 +190,14 @@ mod tests {
             let tol = 1e-12 * (spec.eye - spec.look).length().max(1e-300);
             for (k, c) in path.iter().enumerate() {
                 let (h, r) = split(c.eye);
-                assert!((h - h0).abs() <= tol && (r - r0).abs() <= tol, "view {k} of {n}");
-                assert_eq!((c.look, c.up, c.fov_deg), (spec.look, spec.up, spec.fov_deg));
+                assert!(
+                    (h - h0).abs() <= tol && (r - r0).abs() <= tol,
+                    "view {k} of {n}"
+                );
+                assert_eq!(
+                    (c.look, c.up, c.fov_deg),
+                    (spec.look, spec.up, spec.fov_deg)
+                );
             }
             if n >= 4 && n % 4 == 0 {
                 // a quarter turn moves the eye by sqrt(2) r

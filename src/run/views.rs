@@ -1,0 +1,300 @@
+//! The render command with many views (`--views FILE`, `--orbit N`): the scene is loaded once,
+//! then each view is prepared for its camera, rendered, shaded and written as its own output
+//! set, all-or-nothing (README "Many views").
+//!
+//! Before anything renders: the views file is parsed and every camera checked (FILE:LINE:COL
+//! errors), every view's output names are made from their patterns and checked against each
+//! other and against every file the run reads. A view's eye is checked against the f32 range
+//! rule (`scene::validate::f32_range`, relative to that eye) when the view is reached: a view
+//! that fails it stops the run there, every earlier view complete.
+
+use super::render::{check_memory, encode_to_stdout, stats_key};
+use crate::cli::{RenderSettings, ViewSource};
+use crate::error::{Error, Result};
+use crate::output::{self, OutputKind, OutputSet, Pattern};
+use crate::progress;
+use crate::render::{Options, Views};
+use crate::scene::views::{ViewLine, load_views, orbit};
+use crate::scene::{CameraSpec, Scene, load_scene_meshes};
+use crate::shade::shade;
+use crate::stats::{Stats, ViewTimes, scene_name, secs};
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// One numbered output: its flag, pattern and kind.
+struct Numbered {
+    flag: &'static str,
+    pattern: Pattern,
+    kind: OutputKind,
+}
+
+/// The numbered outputs of `s`: the image (unless it goes to standard output), ids, depth.
+fn numbered(s: &RenderSettings) -> Result<Vec<Numbered>> {
+    let mut outs = Vec::new();
+    let mut add = |flag, path: &Path, kind| -> Result<()> {
+        let pattern = Pattern::parse(flag, path)?;
+        outs.push(Numbered {
+            flag,
+            pattern,
+            kind,
+        });
+        Ok(())
+    };
+    if s.stdout_format.is_none() {
+        add("--output", &s.output, OutputKind::Image)?;
+    }
+    if let Some(p) = &s.ids {
+        add("--ids", p, OutputKind::Npy)?;
+    }
+    if let Some(p) = &s.depth {
+        add("--depth", p, OutputKind::Npy)?;
+    }
+    Ok(outs)
+}
+
+/// Every view's output names, checked: extensions, no two names alike (across views and
+/// outputs, by the file they would be), none naming a file the run reads (`reads`).
+fn names(
+    outs: &[Numbered],
+    views: usize,
+    reads: &[(String, PathBuf)],
+) -> Result<Vec<Vec<PathBuf>>> {
+    for o in outs {
+        o.kind.check_extension(o.flag, &o.pattern.name(0))?;
+    }
+    let mut seen: HashMap<PathBuf, (usize, &str)> = HashMap::new();
+    let mut all = Vec::with_capacity(views);
+    for v in 0..views {
+        let mut paths = Vec::with_capacity(outs.len());
+        for o in outs {
+            let path = o.pattern.name(v);
+            output::check_not_read(
+                o.flag,
+                &path,
+                reads.iter().map(|(w, p)| (w.as_str(), p.as_path())),
+            )?;
+            if let Some((other, flag)) = seen.insert(output::identity(&path), (v, o.flag)) {
+                return Err(Error::usage(format!(
+                    "{} {}: view {v} and view {other} ({flag}) would both write {}; the \
+                     patterns must give every view's outputs distinct names",
+                    o.flag,
+                    o.pattern_text(),
+                    path.display()
+                )));
+            }
+            paths.push(path);
+        }
+        all.push(paths);
+    }
+    Ok(all)
+}
+
+impl Numbered {
+    /// The pattern as given, for messages (view 0's name shows what it makes).
+    fn pattern_text(&self) -> String {
+        format!("(view 0: {})", self.pattern.name(0).display())
+    }
+}
+
+/// The cameras of the run, with the fov each uses: a views file's line's own, else `-fov`,
+/// else the scene's, else the default; an orbit's from the scene's camera (with `--eye`,
+/// `--look`, `--up` applied) and `-fov`.
+fn cameras(
+    s: &RenderSettings,
+    source: &ViewSource,
+    lines: &[ViewLine],
+    scene: &Scene,
+) -> Result<Vec<crate::Camera>> {
+    let (w, h) = (s.view.width, s.view.height);
+    let fov = s.view.fov.or(scene.camera.fov_deg);
+    match source {
+        ViewSource::File(file) => lines
+            .iter()
+            .map(|l| {
+                let spec = CameraSpec {
+                    fov_deg: l.camera.fov_deg.or(fov),
+                    ..l.camera
+                };
+                crate::Camera::look_at(&spec, w, h)
+                    .map_err(|e| Error::input(file, l.line, 0, e.to_string()))
+            })
+            .collect(),
+        ViewSource::Orbit(n) => {
+            let spec = CameraSpec {
+                fov_deg: fov,
+                ..scene.camera
+            };
+            orbit(&spec, *n)
+                .iter()
+                .enumerate()
+                .map(|(k, c)| {
+                    crate::Camera::look_at(c, w, h)
+                        .map_err(|e| Error::usage(format!("--orbit {n}: view {k}: {e}")))
+                })
+                .collect()
+        }
+    }
+}
+
+/// Runs the render command over many views.
+pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<()> {
+    output::install_interrupt_cleanup();
+    check_memory(s.view.width, s.view.height)?;
+    let start = Instant::now();
+    let lines = match source {
+        ViewSource::File(f) => load_views(f)?,
+        ViewSource::Orbit(_) => Vec::new(),
+    };
+    let count = match source {
+        ViewSource::File(_) => lines.len(),
+        ViewSource::Orbit(n) => *n,
+    };
+    let outs = numbered(s)?;
+    let mut reads = vec![("the input scene".to_string(), s.view.input.clone())];
+    if let ViewSource::File(f) = source {
+        reads.push(("the views file".to_string(), f.clone()));
+    }
+    if let Some(p) = &s.stats {
+        OutputKind::Json.check_extension("--stats", p)?;
+    }
+    names(&outs, count, &reads)?;
+
+    let (scene, meshes) = load_scene_meshes(&s.view.input)?;
+    for m in meshes {
+        reads.push((format!("the mesh {} the scene reads", m.display()), m));
+    }
+    let names = names(&outs, count, &reads)?;
+    let stats_reads: Vec<(&str, &Path)> = reads.iter().map(|(w, p)| (w.as_str(), &**p)).collect();
+    if let Some(p) = &s.stats {
+        // the record's own name against the reads and every view's outputs
+        output::check_not_read("--stats", p, stats_reads.iter().copied())?;
+        let id = output::identity(p);
+        if let Some(clash) = names.iter().flatten().find(|n| output::identity(n) == id) {
+            return Err(Error::usage(format!(
+                "--stats {}: a view's output {} has the same name",
+                p.display(),
+                clash.display()
+            )));
+        }
+    }
+    for w in &scene.warnings {
+        eprintln!("lanecast: warning: {w}");
+    }
+    let mut scene = scene;
+    s.view.camera.apply(&mut scene.camera)?;
+    let cameras = cameras(s, source, &lines, &scene)?;
+
+    let options = Options {
+        kernel: s.kernel.into(),
+        accel: s.view.accel,
+        method: s.view.method,
+    };
+    let views = Views::new(&scene, &options)?;
+    let mut stats = Stats {
+        version: env!("CARGO_PKG_VERSION"),
+        command: std::env::args_os()
+            .map(|a| a.to_string_lossy().into_owned())
+            .collect(),
+        scene: scene_name(&s.view.input),
+        width: s.view.width as usize,
+        height: s.view.height as usize,
+        kernel: s.kernel.name(),
+        seed: s.seed,
+        primitives: scene.counts(),
+        method: super::method_name(s.view.method),
+        precision: super::precision_name(s.kernel.precision(), s.view.method),
+        outputs: outs
+            .iter()
+            .map(|o| (stats_key(o.flag), o.pattern.name(0).display().to_string()))
+            .chain(s.stats.iter().map(|p| ("stats", p.display().to_string())))
+            .collect(),
+        ..Stats::default()
+    };
+    stats.phases.push(("load", secs(start.elapsed())));
+    let loop_start = Instant::now();
+    let mut times = ViewTimes::default();
+    let (w, h) = (s.view.width as usize, s.view.height as usize);
+    let flags: Vec<(&'static str, OutputKind)> = outs.iter().map(|o| (o.flag, o.kind)).collect();
+    for (k, camera) in cameras.iter().enumerate() {
+        let paths = &names[k];
+        if s.skip_existing && !paths.is_empty() && paths.iter().all(|p| p.is_file()) {
+            times.skipped += 1;
+            continue;
+        }
+        let outputs: Vec<(&'static str, &Path, OutputKind)> = flags
+            .iter()
+            .zip(paths)
+            .map(|(&(flag, kind), p)| (flag, p.as_path(), kind))
+            .collect();
+        let mut set = OutputSet::create(&outputs, &[])?;
+        let clock = Instant::now();
+        views
+            .check(camera)
+            .map_err(|e| in_view(source, &lines, k, e))?;
+        let renderer = views.renderer(camera)?;
+        let setup = secs(clock.elapsed());
+        let clock = Instant::now();
+        let (frame, redone) = progress::with_progress(renderer.work_units(), |done| {
+            renderer.render_marking(Some(done))
+        });
+        let render = secs(clock.elapsed());
+        if renderer.redecides() {
+            *stats.redecided.get_or_insert(0) += redone.len();
+        }
+        stats.accel = renderer.accel().name();
+        stats.threads = if renderer.is_parallel() {
+            crate::par::current_num_threads()
+        } else {
+            1
+        };
+        stats.renders.push(render);
+        let clock = Instant::now();
+        let rgb = shade(
+            &frame.ids,
+            &frame.depth,
+            s.view.width,
+            s.color_mode,
+            s.variation,
+            s.seed,
+        );
+        if s.stdout_format.is_none() {
+            set.write_image("--output", s.view.width, s.view.height, &rgb)?;
+        }
+        if s.ids.is_some() {
+            set.write_npy_i32("--ids", w, h, &frame.ids)?;
+        }
+        if s.depth.is_some() {
+            set.write_npy_f32("--depth", w, h, &frame.depth)?;
+        }
+        set.commit()?;
+        views.recycle(frame);
+        let sent = match s.stdout_format {
+            Some(format) => encode_to_stdout(format, s.view.width, s.view.height, &rgb)?,
+            None => true,
+        };
+        times.each.push([setup, render, secs(clock.elapsed())]);
+        if !sent {
+            break; // the reader closed the pipe: it wants no more views
+        }
+    }
+    stats.phases.push(("views", secs(loop_start.elapsed())));
+    stats.views = Some(times);
+    if let Some(p) = &s.stats {
+        let mut set = OutputSet::create(&[("--stats", p, OutputKind::Json)], &stats_reads)?;
+        set.write_bytes("--stats", stats.json().as_bytes())?;
+        set.commit()?;
+    }
+    if s.time {
+        eprint!("{}", stats.text());
+    }
+    Ok(())
+}
+
+/// An error of view `k`, naming its line in the views file (or its place in the orbit).
+fn in_view(source: &ViewSource, lines: &[ViewLine], k: usize, e: Error) -> Error {
+    match source {
+        ViewSource::File(f) => Error::input(f, lines[k].line, 0, format!("view {k}: {e}")),
+        ViewSource::Orbit(n) => Error::usage(format!("--orbit {n}: view {k}: {e}")),
+    }
+}
