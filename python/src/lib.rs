@@ -678,6 +678,15 @@ fn runs(shapes: &Shapes) -> Vec<Run<'_>> {
     out
 }
 
+/// Item `i` of a pickled part as a C-contiguous, aligned array of `dtype`: a pickle's buffers
+/// may come back misaligned (out-of-band buffers, as Dask sends them).
+fn aligned<'py>(part: &Bound<'py, PyTuple>, i: usize, dtype: &str) -> PyResult<Bound<'py, PyAny>> {
+    let np = part.py().import("numpy")?;
+    let kw = pyo3::types::PyDict::new(part.py());
+    kw.set_item("requirements", "CA")?;
+    np.call_method("require", (part.get_item(i)?, dtype), Some(&kw))
+}
+
 fn corrupt(what: &str) -> PyErr {
     value_error(format!("not a pickled lanecast.Scene: {what}"))
 }
@@ -962,8 +971,8 @@ impl PyScene {
             match kind.as_str() {
                 "loose" => {
                     let kinds: Vec<u8> = part.get_item(1)?.extract()?;
-                    let nums: PyReadonlyArray1<f64> = part.get_item(2)?.extract()?;
-                    let lines: PyReadonlyArray1<u32> = part.get_item(3)?.extract()?;
+                    let nums: PyReadonlyArray1<f64> = aligned(&part, 2, "float64")?.extract()?;
+                    let lines: PyReadonlyArray1<u32> = aligned(&part, 3, "uint32")?.extract()?;
                     let (nums, lines) = (nums.as_slice()?, lines.as_slice()?);
                     if lines.len() != kinds.len() {
                         return Err(corrupt("lines"));
@@ -989,8 +998,8 @@ impl PyScene {
                     }
                 }
                 "mesh" => {
-                    let v: PyReadonlyArray2<f64> = part.get_item(1)?.extract()?;
-                    let f: PyReadonlyArray2<u32> = part.get_item(2)?.extract()?;
+                    let v: PyReadonlyArray2<f64> = aligned(&part, 1, "float64")?.extract()?;
+                    let f: PyReadonlyArray2<u32> = aligned(&part, 2, "uint32")?.extract()?;
                     let line: usize = part.get_item(3)?.extract()?;
                     let (v, f) = (v.as_slice()?, f.as_slice()?);
                     let vertices: Vec<glam::DVec3> = v
