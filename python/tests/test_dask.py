@@ -125,3 +125,42 @@ def test_a_worker_killed_mid_run_then_a_rerun_gives_the_complete_set(client, tmp
     got = load_all(tmp_path, n, outputs)
     ref = scene.render_views(cams, 320, 240)
     assert same_bits(got["ids"], ref.ids) and same_bits(got["depth"], ref.depth)
+
+
+JOB = """
+import sys, numpy as np, distributed, lanecast, lanecast.dask
+sys.path.insert(0, {tests!r})
+from test_dask import orbit
+client = distributed.Client({address!r})
+scene = lanecast.Scene.load({scene!r})
+print(lanecast.dask.render_views(client, scene, orbit({n}), {out!r}, 320, 240, chunk_size=2))
+"""
+
+
+def test_a_job_killed_mid_run_then_a_rerun_gives_the_complete_set(client, tmp_path):
+    import subprocess
+    import sys
+    n, scene_path = 200, str(SCENES / "bunny.sc")
+    code = JOB.format(tests=os.path.dirname(__file__), address=client.scheduler.address,
+                      scene=scene_path, n=n, out=str(tmp_path))
+    job = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE,
+                           stderr=subprocess.PIPE)
+    deadline = time.time() + 120
+    while time.time() < deadline and job.poll() is None:
+        if len([e for e in os.listdir(tmp_path) if e.startswith("view_")]) >= 8:
+            break
+        time.sleep(0.005)
+    job.kill()
+    job.wait()
+    at_kill = len([e for e in os.listdir(tmp_path) if e.startswith("view_")])
+    assert 8 <= at_kill < n, (at_kill, job.stderr.read()[-2000:])
+    scene = lanecast.Scene.load(scene_path)
+    cams = orbit(n)
+    again = ldask.render_views(client, scene, cams, tmp_path, 320, 240)
+    print(f"job killed with {at_kill} of {n} views on disk; rerun: {again}")
+    assert again.failed == {} and sorted(again.done + again.skipped) == list(range(n))
+    assert len(again.skipped) >= at_kill
+    assert listing(tmp_path) == [ldask.view_name(v, n) for v in range(n)]
+    got = load_all(tmp_path, n, ("ids", "depth"))
+    ref = scene.render_views(cams, 320, 240)
+    assert same_bits(got["ids"], ref.ids) and same_bits(got["depth"], ref.depth)
