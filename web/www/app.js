@@ -55,6 +55,7 @@ function setScene(name, bytes, files) {
   app.home = { eye: c.eye, look: c.look, up: c.up, fov: c.fov ?? scene.default_fov };
   app.camera = structuredClone(app.home);
   app.sceneName = name;
+  app.fpsEma = 0;
   app.pinned = -1;
   app.hover = -1;
   ui.pinned.textContent = '';
@@ -188,6 +189,7 @@ canvas.addEventListener('wheel', (e) => {
 }, { passive: false });
 window.addEventListener('keydown', (e) => {
   if (e.target instanceof HTMLInputElement || e.target instanceof HTMLSelectElement) return;
+  if (e.key === 'h' || e.key === 'H') $('panel').hidden = !$('panel').hidden;
   if (e.key === 'r' || e.key === 'R') {
     app.camera = structuredClone(app.home);
     syncFov();
@@ -263,6 +265,7 @@ function resize() {
   if (w !== canvas.width || h !== canvas.height) {
     canvas.width = w;
     canvas.height = h;
+    app.fpsEma = 0;
     app.dirty = true;
   }
 }
