@@ -296,12 +296,12 @@ impl PyCamera {
         height: u32,
     ) -> Result<PyCamera, String> {
         let tol = INTRINSICS_TOL;
-        if !k
+        let finite = k
             .iter()
-            .chain(e.iter().map(|r| r[..3].try_into().unwrap()))
-            .all(|r: &[f64; 3]| r.iter().all(|x| x.is_finite()))
-            || !e.iter().all(|r| r[3].is_finite())
-        {
+            .flatten()
+            .chain(e.iter().flatten())
+            .all(|x| x.is_finite());
+        if !finite {
             return Err("K and extrinsic must be finite".into());
         }
         let (fx, fy, cx, cy) = (k[0][0], k[1][1], k[0][2], k[1][2]);
