@@ -96,7 +96,7 @@ def bench_open3d(o3d, path, K, mats, w, h, threads):
     del first
     t1 = time.perf_counter()
     ids, per_cast, per_view = [], [], []
-    for E in mats:
+    for k, E in enumerate(mats):
         s = time.perf_counter()
         rays = o3d.t.geometry.RaycastingScene.create_rays_pinhole(Kt, o3d.core.Tensor(E), w, h)
         c = time.perf_counter()
@@ -105,7 +105,7 @@ def bench_open3d(o3d, path, K, mats, w, h, threads):
         e = time.perf_counter()
         per_cast.append(e - c)
         per_view.append(e - s)
-        ids.append(i)
+        ids.append((i, t) if k % 10 == 0 else None)
     t2 = time.perf_counter()
     return ids, {"build_s": t1 - t0, "end_to_end_s": t2 - t0,
                  "cast_ms": 1e3 * statistics.median(per_cast),
@@ -132,12 +132,25 @@ def bench_embreex(scene, cams, w, h, views):
     return {"build_s": t1 - t0, "per_view_ms": 1e3 * statistics.median(per), "views": len(per)}
 
 
-def agreement(mine, theirs):
+def agreement(mine, depth, theirs, t_hit, faces, K):
+    """Pixel counts; for pixels where both hit different triangles, how many of those pairs
+    share a vertex (neighbours: the ray crosses near their common edge or corner) and how many
+    hit at the same distance to 1e-5 (the same point of the surface, a tie between them)."""
     theirs = theirs.astype(np.int64)
     theirs[theirs == 4294967295] = -1
+    # Open3D's directions are K^-1 (x + 0.5, y + 0.5, 1) rotated: t_hit is in their lengths
+    h, w = mine.shape
+    u = (np.arange(w) + 0.5 - K[0, 2]) / K[0, 0]
+    v = (np.arange(h) + 0.5 - K[1, 2]) / K[1, 1]
+    t_hit = t_hit * np.sqrt(1 + u[None, :] ** 2 + v[:, None] ** 2)
     both = (mine >= 0) & (theirs >= 0)
+    diff = both & (mine != theirs)
+    a, b = mine[diff], theirs[diff]
+    shared = sum(len(set(faces[x]) & set(faces[y])) > 0 for x, y in zip(a, b))
+    same_t = int((np.abs(depth[diff] - t_hit[diff]) <= 1e-5 * depth[diff]).sum())
     return {"pixels": int(mine.size), "both_hit": int(both.sum()),
-            "ids_differ": int((both & (mine != theirs)).sum()),
+            "ids_differ": int(diff.sum()), "differ_neighbours": int(shared),
+            "differ_same_distance": same_t,
             "only_lanecast": int(((mine >= 0) & (theirs < 0)).sum()),
             "only_open3d": int(((mine < 0) & (theirs >= 0)).sum())}
 
@@ -185,9 +198,11 @@ def main():
             print(f"ratios:   per view {od['per_view_ms'] / lc['per_view_ms']:.1f}x "
                   f"(cast_rays alone {od['cast_ms'] / lc['per_view_ms']:.1f}x), "
                   f"end to end {od['end_to_end_s'] / lc['end_to_end_s']:.1f}x")
+            (_, _, faces, _), = [p for p in scene._state()[5] if p[0] == "mesh"]
             tot = {}
             for v in range(0, a.views, 10):
-                for k, x in agreement(out.ids[v], ids[v]).items():
+                theirs, t_hit = ids[v]
+                for k, x in agreement(out.ids[v], out.depth[v], theirs, t_hit, faces, K).items():
                     tot[k] = tot.get(k, 0) + x
             print(f"ids vs open3d (every 10th view): {tot}")
             del ids
