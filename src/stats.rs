@@ -287,6 +287,7 @@ mod tests {
             phases: vec![("parse", 0.001), ("render", 0.002)],
             renders: vec![0.004, 0.002, 0.003, 0.010],
             redecided: None,
+            views: None,
         }
     }
 

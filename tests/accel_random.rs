@@ -202,11 +202,13 @@ fn scenes(big: bool) -> Vec<(String, Scene)> {
         let mut more: Vec<String> = stress
             .expect("scenes/stress")
             .map(|e| {
-                format!(
-                    "stress/{}",
-                    e.expect("an entry").file_name().to_string_lossy()
-                )
+                e.expect("an entry")
+                    .file_name()
+                    .to_string_lossy()
+                    .into_owned()
             })
+            .filter(|name| name.ends_with(".sc"))
+            .map(|name| format!("stress/{name}"))
             .collect();
         more.sort();
         names.extend(more.into_iter().map(|n| &*n.leak()));

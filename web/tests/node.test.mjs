@@ -50,7 +50,9 @@ function npy(file) {
 function native(scene, w, h) {
   const ids = path.join(tmp, 'ids.npy');
   const depth = path.join(tmp, 'depth.npy');
-  const r = spawnSync(bin, ['-i', scene, '-size', `${w}x${h}`, '--ids', ids, '--depth', depth], {
+  // -o into the temp folder too: without it the image would land beside the scene
+  const image = path.join(tmp, 'image.bmp');
+  const r = spawnSync(bin, ['-i', scene, '-size', `${w}x${h}`, '-o', image, '--ids', ids, '--depth', depth], {
     cwd: root,
     encoding: 'utf8',
   });

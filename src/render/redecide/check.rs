@@ -461,6 +461,7 @@ mod tests {
         let mut paths: Vec<_> = std::fs::read_dir(root.join("stress"))
             .expect("scenes/stress")
             .map(|e| e.expect("an entry").path())
+            .filter(|p| p.extension().is_some_and(|e| e == "sc"))
             .collect();
         paths.extend((1..=7).map(|n| root.join(format!("scene{n}.sc"))));
         paths.sort();
