@@ -251,6 +251,41 @@ test('a dropped scene takes its mesh dropped with it', async () => {
   await page.screenshot({ path: path.join(shots, 'teapot.png') });
 });
 
+test('Export PNG saves the frame; the camera line is one a scene accepts', async () => {
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#png')]);
+  const file = path.join(tmp, 'export.png');
+  await download.saveAs(file);
+  const png = fs.readFileSync(file);
+  assert.equal(png.subarray(1, 4).toString('latin1'), 'PNG');
+  assert.deepEqual([png.readUInt32BE(16), png.readUInt32BE(20)], [W, H]); // IHDR
+  // after an orbit, the camera line pasted into the scene renders the view the page shows
+  await page.mouse.move(420, 250);
+  await page.mouse.down();
+  for (let k = 1; k <= 5; k++) await page.mouse.move(420 - 12 * k, 250 + 3 * k);
+  await page.mouse.up();
+  await page.evaluate(() => window.lanecastApp.frame());
+  const line = await page.inputValue('#camline');
+  const nums = line.split(/\s+/).filter((w) => /^[-+\d.]/.test(w)).map(Number);
+  assert.equal(nums.length, 10, line);
+  const cam = await page.evaluate(() => window.lanecastApp.camera);
+  [...cam.eye, ...cam.look, ...cam.up, cam.fov].forEach((v, k) => {
+    assert.ok(Math.abs(v - nums[k]) <= 1e-6 * Math.max(1, Math.abs(v)), `${line} vs ${v}`);
+  });
+  const obj = path.join(root, 'scenes/meshes/teapot.obj');
+  const sc = fs.readFileSync(path.join(root, 'scenes/teapot.sc'), 'utf8').replace(/^camera .*$/m, line).replace(/^mesh .*$/m, `mesh ${obj}`);
+  fs.writeFileSync(path.join(tmp, 'pasted.sc'), sc);
+  await page.evaluate((n) => {
+    const app = window.lanecastApp;
+    app.camera = { eye: n.slice(0, 3), look: n.slice(3, 6), up: n.slice(6, 9), fov: n[9] };
+    app.dirty = true;
+    app.frame();
+  }, nums);
+  const want = native(path.join(tmp, 'pasted.sc'));
+  const ids = Buffer.from(await page.evaluate(() => window.btoaBytes(window.lanecastApp.lc.ids())), 'base64');
+  assert.ok(ids.equals(Buffer.from(want.ids.buffer, want.ids.byteOffset, 4 * W * H)), 'the pasted camera renders another view');
+  assert.ok(want.ids.some((i) => i >= 0));
+});
+
 test('a 1280x720 view of the bunny, hovered (the README screenshot)', async () => {
   await page.setViewportSize({ width: 1280, height: 720 });
   await drawn(() => page.selectOption('#scene', 'bunny'));
