@@ -286,6 +286,31 @@ test('Export PNG saves the frame; the camera line is one a scene accepts', async
   assert.ok(want.ids.some((i) => i >= 0));
 });
 
+test('the colour controls shade as -cm, -cv and --seed do', async () => {
+  await page.mouse.move(5, 395);
+  await page.selectOption('#scene', 'scene4');
+  await page.waitForFunction(() => window.lanecastApp.sceneName === 'scene4.sc' && !window.lanecastApp.dirty);
+  for (const [mode, variation, seed, flags] of [
+    ['ordered', 'log', '0', ['-cm', 'ordered', '-cv', 'log']],
+    ['random', 'log', '7', ['-cv', 'log', '--seed', '7']],
+    ['random', 'linear', '0', []],
+  ]) {
+    await page.selectOption('#mode', mode);
+    await page.selectOption('#variation', variation);
+    await page.fill('#seed', seed);
+    await page.evaluate(() => { window.lanecastApp.reshade = true; window.lanecastApp.frame(); });
+    const want = native('scenes/scene4.sc', flags);
+    await page.evaluate(async (b64) => {
+      const bmp = await createImageBitmap(await (await fetch(`data:image/png;base64,${b64}`)).blob());
+      const g = new OffscreenCanvas(bmp.width, bmp.height).getContext('2d');
+      g.drawImage(bmp, 0, 0);
+      window.snaps.native = g.getImageData(0, 0, bmp.width, bmp.height).data;
+    }, want.png.toString('base64'));
+    await snap('controls');
+    assert.equal(await differing('controls', 'native'), 0, `${flags.join(' ')}: canvas differs from the CLI's PNG`);
+  }
+});
+
 test('a 1280x720 view of the bunny, hovered (the README screenshot)', async () => {
   await page.setViewportSize({ width: 1280, height: 720 });
   await drawn(() => page.selectOption('#scene', 'bunny'));
