@@ -125,3 +125,22 @@ def test_bad_arguments_are_value_errors():
         lanecast.Camera(eye=(0, 0, 1), look=(0, 0, 0), fov=180)
     with pytest.raises(ValueError, match="color_mode"):
         scene.render(width=8, height=8).image(color_mode="pink")
+
+
+def test_a_ply_file_alone(cli, tmp_path):
+    # a binary little-endian PLY of the bunny's triangles, written here
+    obj = (SCENES / "meshes" / "bunny.obj").read_text().splitlines()
+    v = np.array([l.split()[1:4] for l in obj if l.startswith("v ")], float)
+    f = np.array([[int(x.split("/")[0]) - 1 for x in l.split()[1:4]]
+                  for l in obj if l.startswith("f ")], np.int32)
+    ply = tmp_path / "bunny.ply"
+    head = (f"ply\nformat binary_little_endian 1.0\nelement vertex {len(v)}\n"
+            "property double x\nproperty double y\nproperty double z\n"
+            f"element face {len(f)}\nproperty list uchar int vertex_indices\nend_header\n")
+    faces = np.zeros(len(f), dtype=[("n", "u1"), ("i", "<i4", 3)])
+    faces["n"], faces["i"] = 3, f
+    ply.write_bytes(head.encode() + v.astype("<f8").tobytes() + faces.tobytes())
+    ids, depth = cli(ply, tmp_path, size=(120, 90))
+    out = lanecast.Scene.load(ply).render(width=120, height=90)
+    assert same_bits(out.ids, ids) and same_bits(out.depth, depth)
+    assert (out.ids >= 0).sum() > 500
