@@ -1,0 +1,131 @@
+#!/usr/bin/env python3
+"""Many views of one scan: lanecast (`--views`) against the Embree 3 caster (`--views`), in one run.
+
+Usage: python3 scripts/views_table.py [--views N] [--rounds R] [--threads T] [--size WxH]
+                                      [--levels L ...]
+
+Needs ../shared/anchors (the Embree caster and orbit_views.py; not part of this repository) and
+Debian's libembree-dev (`apt-get install -y libembree-dev`). Builds both programs (as
+scripts/vs_embree.py does), writes the armadillo subdivided L times into target/scale/
+(scripts/subdivide.py; L = 2 gives 832,000 triangles, 3 gives 3,328,000) with a scene file
+beside it, and an orbit of N views (orbit_views.py, the same cameras for both programs). Then,
+R rounds, alternating the programs:
+
+- lanecast: `-i SCENE --views FILE -size WxH -o DIR/v%04d.bmp --stats S.json --threads T`.
+  Per view: setup (the scene prepared for the camera) plus render, from --stats' views.each
+  (output encoding excluded); whole: the command's wall time (load, every view, BMP outputs).
+- Embree: `embree_cast SCENE --size WxH --views FILE --threads T`. Per view: its
+  view_median_ms (ray generation, rtcIntersect8, buffers); whole: build_ms + views_total_ms
+  (its file reading excluded: its reader is not Embree; it writes no images).
+
+Prints a markdown table (medians over rounds) and each target as 'met' or 'MISSED':
+per-view median at least 3x faster than Embree's; the whole command at least 2x faster than
+Embree's build plus views.
+"""
+import argparse
+import json
+import os
+import pathlib
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import vs_embree  # noqa: E402  (its build() builds both programs)
+
+ROOT = vs_embree.ROOT
+SCALE = vs_embree.SCALE
+
+
+def scan(levels):
+    """target/scale/armadillo_L.sc: the shared armadillo subdivided `levels` times."""
+    obj = SCALE / f"armadillo_{levels}.obj"
+    sc = SCALE / f"armadillo_{levels}.sc"
+    if not obj.exists():
+        src = ROOT / "scenes" / "meshes" / "armadillo.obj"
+        vs_embree.sh([sys.executable, str(ROOT / "scripts" / "subdivide.py"), str(src), str(obj),
+                      str(levels)])
+    sc.write_text("camera eye 60 60 -330 look 0 22 0 up 0 1 0 fov 40\n"
+                  f"mesh {obj.name}\n")
+    return sc
+
+
+def orbit(scene, n, out):
+    text = vs_embree.sh([sys.executable, str(vs_embree.SHARED / "orbit_views.py"), str(scene),
+                         str(n)]).stdout
+    out.write_text(text)
+    return out
+
+
+def lanecast(scene, views, size, threads, tmp):
+    frames = tmp / "frames"
+    shutil.rmtree(frames, ignore_errors=True)
+    frames.mkdir()
+    stats = tmp / "s.json"
+    t0 = time.perf_counter()
+    vs_embree.sh([str(vs_embree.LANECAST), "-i", str(scene), "--views", str(views), "-size", size,
+                  "-o", str(frames / "v%04d.bmp"), "--stats", str(stats), "--threads",
+                  str(threads)])
+    whole = time.perf_counter() - t0
+    s = json.loads(stats.read_text())
+    each = s["views"]["each"]
+    per_view = statistics.median(v["setup_s"] + v["render_s"] for v in each)
+    setup = statistics.median(v["setup_s"] for v in each)
+    render = statistics.median(v["render_s"] for v in each)
+    return {"view": per_view * 1e3, "setup": setup * 1e3, "render": render * 1e3,
+            "load": s["phases_s"]["load"] * 1e3, "whole": whole * 1e3}
+
+
+def embree(scene, views, size, threads):
+    out = vs_embree.sh([str(vs_embree.EMBREE), str(scene), "--size", size, "--api", "8",
+                        "--threads", str(threads), "--views", str(views)]).stdout
+    kv = dict(line.split("=", 1) for line in out.split() if "=" in line)
+    build, total = float(kv["build_ms"]), float(kv["views_total_ms"])
+    return {"view": float(kv["view_median_ms"]), "build": build, "whole": build + total}
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--views", type=int, default=100)
+    ap.add_argument("--rounds", type=int, default=3)
+    ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--size", default="1920x1080")
+    ap.add_argument("--levels", type=int, nargs="+", default=[3])
+    a = ap.parse_args()
+    vs_embree.build()
+    cpu = next((line.split(":", 1)[1].strip() for line in open("/proc/cpuinfo")
+                if line.startswith("model name")), "unknown CPU")
+    print(f"{cpu}, {os.cpu_count()} cores; {a.threads} threads, {a.size}, {a.views}-view orbit, "
+          f"median of {a.rounds} alternated rounds\n")
+    print("| scene | triangles | lanecast per view (setup + render) | Embree per view | ratio "
+          "| lanecast whole | Embree build + views | ratio |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|")
+    verdicts = []
+    with tempfile.TemporaryDirectory() as t:
+        tmp = pathlib.Path(t)
+        for levels in a.levels:
+            scene = scan(levels)
+            views = orbit(scene, a.views, tmp / "views.txt")
+            runs_l, runs_e = [], []
+            for _ in range(a.rounds):
+                runs_l.append(lanecast(scene, views, a.size, a.threads, tmp))
+                runs_e.append(embree(scene, views, a.size, a.threads))
+            med = lambda runs, k: statistics.median(r[k] for r in runs)  # noqa: E731
+            lv, ev, lw, ew = med(runs_l, "view"), med(runs_e, "view"), med(runs_l, "whole"), \
+                med(runs_e, "whole")
+            tris = 52_000 * 4 ** levels
+            print(f"| armadillo_{levels} | {tris:,} | {lv:.1f} ms ({med(runs_l, 'setup'):.1f} + "
+                  f"{med(runs_l, 'render'):.1f}) | {ev:.1f} ms | {ev / lv:.2f}x | {lw / 1e3:.2f} s "
+                  f"| {ew / 1e3:.2f} s | {ew / lw:.2f}x |")
+            verdicts.append((f"armadillo_{levels} per view >= 3x Embree", ev / lv >= 3.0))
+            verdicts.append((f"armadillo_{levels} whole >= 2x Embree", ew / lw >= 2.0))
+    print()
+    for what, ok in verdicts:
+        print(f"- {what}: {'met' if ok else 'MISSED'}")
+
+
+if __name__ == "__main__":
+    main()
