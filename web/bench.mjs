@@ -44,19 +44,31 @@ await page.goto(`http://127.0.0.1:${server.address().port}/`);
 await page.waitForFunction(() => window.lanecastApp?.ready);
 const menu = JSON.parse(fs.readFileSync(path.join(dist, 'scenes', 'menu.json'), 'utf8'));
 
-/** The native command line's best one-thread render phase for the scene's frame, in ms. */
+/**
+ * The native command line on one thread: the best render phase of the scene's own frame
+ * (`--repeat 20`), and the median view of a 12-view `--orbit` (per-view setup + render, as
+ * the page's orbit does), in ms.
+ */
 function native(file) {
   if (!fs.existsSync(bin)) return null;
-  const stats = path.join(os.tmpdir(), `lanecast-bench-${process.pid}.json`);
-  const r = spawnSync(bin, ['-i', `scenes/${file}`, '-size', `${W}x${H}`, '--threads', '1', '--repeat', '20', '--stats', stats], { cwd: root, encoding: 'utf8' });
-  if (r.status !== 0) return null;
-  const s = JSON.parse(fs.readFileSync(stats, 'utf8'));
-  fs.rmSync(stats, { force: true });
-  const best = s.render_best_s ?? s.timings?.render_best_s;
-  return best != null ? best * 1e3 : null;
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'lanecast-bench-'));
+  const stats = path.join(dir, 's.json');
+  const run = (args) => {
+    const r = spawnSync(bin, ['-i', `scenes/${file}`, '-size', `${W}x${H}`, '--threads', '1', '--stats', stats, ...args], { cwd: root, encoding: 'utf8' });
+    return r.status === 0 ? JSON.parse(fs.readFileSync(stats, 'utf8')) : null;
+  };
+  try {
+    const one = run(['--repeat', '20', '-o', path.join(dir, 'x.png')]);
+    const orbit = run(['--orbit', '12', '--ids', path.join(dir, 'i_%05d.npy')]);
+    const each = orbit?.views?.each?.map((v) => (v.setup_s + v.render_s) * 1e3).sort((x, y) => x - y);
+    return { render: one ? one.render_best_s * 1e3 : null, view: each ? each[Math.floor(each.length / 2)] : null };
+  } finally {
+    fs.rmSync(dir, { recursive: true, force: true });
+  }
 }
 
-console.log(`| scene | primitives | frame ms (mean / p95) | fps | render ms (mean) | native 1-thread render ms |`);
+console.log(`load average before: ${os.loadavg().map((x) => x.toFixed(2)).join(' ')} on ${os.cpus().length} CPUs (${os.cpus()[0].model})`);
+console.log(`| scene | primitives | frame ms (median / p95) | fps (1000 / median) | render ms (median) | native 1-thread: render ms / orbit view ms |`);
 console.log(`|---|---:|---:|---:|---:|---:|`);
 for (const m of menu) {
   await page.selectOption('#scene', m.name);
@@ -72,24 +84,29 @@ for (const m of menu) {
       c.eye = [c.look[0] + cs * ox + sn * oz, c.look[1] + oy, c.look[2] - sn * ox + cs * oz];
       app.dirty = true;
       const t0 = performance.now();
-      app.frame();
-      return [performance.now() - t0, app.last.renderMs];
+      const drew = app.frame();
+      return [performance.now() - t0, app.last.renderMs, drew];
     };
     for (let k = 0; k < 5; k++) once(); // warm up
     const t = [], rt = [];
+    let refused = 0;
     for (let k = 0; k < n; k++) {
-      const [f, r] = once();
+      const [f, r, drew] = once();
+      if (!drew) {
+        refused++; // a view the engine refuses: not a frame
+        continue;
+      }
       t.push(f);
       rt.push(r);
     }
     app.camera = structuredClone(app.home);
     app.dirty = true;
-    const mean = (a) => a.reduce((x, y) => x + y, 0) / a.length;
-    const sorted = [...t].sort((a, b) => a - b);
-    return { mean: mean(t), p95: sorted[Math.floor(0.95 * (sorted.length - 1))], render: mean(rt), prims: app.lc.scene.primitives };
+    const q = (a, p) => [...a].sort((x, y) => x - y)[Math.floor(p * (a.length - 1))];
+    return { median: q(t, 0.5), p95: q(t, 0.95), render: q(rt, 0.5), prims: app.lc.scene.primitives, refused };
   }, frames);
   const nat = native(m.file);
-  console.log(`| ${m.name} | ${r.prims} | ${r.mean.toFixed(2)} / ${r.p95.toFixed(2)} | ${(1000 / r.mean).toFixed(0)} | ${r.render.toFixed(2)} | ${nat == null ? 'n/a' : nat.toFixed(2)} |`);
+  console.log(`| ${m.name}${r.refused ? ` (${r.refused} of ${frames} views refused)` : ''} | ${r.prims} | ${r.median.toFixed(2)} / ${r.p95.toFixed(2)} | ${(1000 / r.median).toFixed(0)} | ${r.render.toFixed(2)} | ${nat?.render?.toFixed(2) ?? 'n/a'} / ${nat?.view?.toFixed(2) ?? 'n/a'} |`);
 }
+console.log(`load average after: ${os.loadavg().map((x) => x.toFixed(2)).join(' ')}`);
 await browser.close();
 server.close();

@@ -290,9 +290,16 @@ function frame() {
     try {
       f = lc.render(null, w, h, app.camera, shading());
     } catch (e) {
-      showError(e.message); // a camera the engine refuses (e.g. eye out of f32 range)
+      // a view the engine refuses (an eye out of f32 range, a triangle too thin to resolve
+      // from it): the message, and the last frame stays until a view renders again
+      showError(e.message);
+      app.viewError = true;
       app.dirty = false;
       return false;
+    }
+    if (app.viewError) {
+      showError('');
+      app.viewError = false;
     }
     renderMs = f.ms;
     rgba = f.rgba;
