@@ -1,5 +1,5 @@
 // The built module (web/dist/lanecast.wasm, through web/www/lanecast.js) against the native
-// command line: every seed, stress and bundled mesh scene at two sizes, ids and depths byte
+// command line: every seed, stress and bundled mesh scene (and tests/ply's files) at two sizes, ids and depths byte
 // for byte, as `lanecast -i SCENE -size WxH --ids I.npy --depth D.npy` writes them (the same
 // default options: precision auto, packet kernel). Then the API's other calls: pick, shade,
 // cameras other than the scene's, and errors worded as the command line words them.
@@ -35,6 +35,10 @@ const seeds = rel('scenes').filter((f) => /scene\d\.sc$/.test(f));
 const meshScenes = rel('scenes').filter((f) => !/scene\d\.sc$/.test(f));
 const stress = rel('scenes/stress');
 const bareMeshes = rel('scenes/meshes');
+// PLY files, valid and not (ASCII, binary both ends): the same frames, or the same refusal
+const plys = rel('tests/ply');
+// scenes that break one rule each: refused alike, with the same FILE:LINE:COL message
+const bad = rel('tests/bad');
 
 /** A .npy file's data bytes (the header skipped), with its dtype descriptor and shape. */
 function npy(file) {
@@ -79,8 +83,8 @@ function files(scene) {
 
 const asBytes = (a) => Buffer.from(a.buffer, a.byteOffset, a.byteLength);
 
-for (const [group, scenes] of [['seed scenes', seeds], ['stress scenes', stress], ['mesh scenes', meshScenes], ['bare meshes', bareMeshes]]) {
-  test(`${group}: wasm ids and depths equal the native command line's, byte for byte`, (t) => {
+for (const [group, scenes] of [['seed scenes', seeds], ['stress scenes', stress], ['mesh scenes', meshScenes], ['bare meshes', bareMeshes], ['PLY files of tests/ply', plys], ['bad scenes of tests/bad', bad]]) {
+  test(`${group}: ids and depths byte for byte as the native CLI's, or its refusal word for word`, (t) => {
     assert.ok(scenes.length > 0, `no ${group} found`);
     let compared = 0;
     let refused = 0;
