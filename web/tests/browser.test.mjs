@@ -311,7 +311,7 @@ test('the colour controls shade as -cm, -cv and --seed do', async () => {
   }
 });
 
-test('a 1280x720 view of the bunny, hovered (the README screenshot)', async () => {
+test('a 1280x720 view of the bunny: hover and pin a mesh face (the README screenshot)', async () => {
   await page.setViewportSize({ width: 1280, height: 720 });
   await drawn(() => page.selectOption('#scene', 'bunny'));
   await page.waitForFunction(() => window.lanecastApp.sceneName === 'bunny.sc' && window.lanecastApp.lc.width === 1280);
@@ -320,5 +320,13 @@ test('a 1280x720 view of the bunny, hovered (the README screenshot)', async () =
   const hover = await page.evaluate(() => window.lanecastApp.hover);
   assert.ok(hover >= 0, 'the cursor is on the bunny');
   assert.match(await page.textContent('#hover'), new RegExp(`id ${hover} triangle`));
+  // a click pins the face: its mesh face index and the scene's `mesh` line
+  await page.evaluate(() => document.activeElement?.blur());
+  await page.mouse.click(700, 300);
+  await page.evaluate(() => window.lanecastApp.frame());
+  const meshLine = fs.readFileSync(path.join(root, 'scenes/bunny.sc'), 'utf8').split('\n').findIndex((l) => /^mesh /.test(l)) + 1;
+  assert.match(await page.textContent('#pinned'), new RegExp(`id ${hover}  triangle  mesh face ${hover} \\(scene line ${meshLine}\\)`));
+  await page.mouse.move(560, 420);
+  await page.evaluate(() => window.lanecastApp.frame());
   await page.screenshot({ path: path.join(shots, 'bunny-1280x720.png') });
 });
