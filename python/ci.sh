@@ -19,9 +19,10 @@ python3 -m venv "$venv"
 # The extension builds in its own target folder, so it never waits on the main build's lock.
 CARGO_TARGET_DIR="$root/target/python" "$venv/bin/python" -m pip install --quiet "./python[dask]" pytest
 
-# The binding crate lints clean (it is not a default member, so the root's clippy skips it).
+# The binding crate lints clean (it is not a default member, so the root's clippy skips it;
+# --no-deps: the library is linted by .ci/run).
 PYO3_PYTHON="$venv/bin/python" CARGO_TARGET_DIR="$root/target/python" \
-    cargo clippy -p lanecast-python --release -- -D warnings
+    cargo clippy -p lanecast-python --release --no-deps -- -D warnings
 
 # The tests import the installed package, not the source folder.
 cd "$root/python/tests"
