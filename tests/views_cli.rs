@@ -464,3 +464,35 @@ fn a_killed_run_keeps_finished_views_and_a_rerun_completes_them() {
         }
     }
 }
+
+/// A view whose eye puts a primitive outside the f32 range rule (scene 6's flat star seen from
+/// 4e-16 off its plane, an edge pointing at the eye) is refused before any view renders,
+/// naming the views file's line and the scene's; the orbit that crosses that plane does so
+/// exactly (quarter turns are exact) and renders whole.
+#[test]
+fn a_view_out_of_range_is_refused_before_anything_renders() {
+    let dir = TempDir::new("views-range");
+    let scene = seed_scene(6);
+    let scene = scene.to_str().unwrap();
+    dir.write(
+        "v.txt",
+        "camera eye 0 0 7 look 0 0 0 up 0 1 0\ncamera eye 7 0 4.3e-16 look 0 0 0 up 0 1 0\n",
+    );
+    let o = run(
+        &dir.path,
+        &["-i", scene, "--views", "v.txt", "-o", "f%d.png"],
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        e.contains("v.txt:2: view 1:") && e.contains("scene6.sc:"),
+        "{e}"
+    );
+    assert_eq!(dir.entries(), ["v.txt"]);
+    let o = run(
+        &dir.path,
+        &["-i", scene, "--orbit", "12", "-o", "o%02d.png"],
+    );
+    assert_success(&o, "scene 6 orbit");
+    assert_eq!(dir.entries().len(), 13);
+}

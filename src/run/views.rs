@@ -4,9 +4,9 @@
 //!
 //! Before anything renders: the views file is parsed and every camera checked (FILE:LINE:COL
 //! errors), every view's output names are made from their patterns and checked against each
-//! other and against every file the run reads. A view's eye is checked against the f32 range
-//! rule (`scene::validate::f32_range`, relative to that eye) when the view is reached: a view
-//! that fails it stops the run there, every earlier view complete.
+//! other and against every file the run reads, and every view's eye is checked against the f32
+//! range rule (`scene::validate::f32_range`, relative to that eye). A bad view stops the run
+//! with nothing written.
 
 use super::render::{check_memory, encode_to_stdout, stats_key};
 use crate::cli::{RenderSettings, ViewSource};
@@ -191,6 +191,15 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
         method: s.view.method,
     };
     let views = Views::new(&scene, &options)?;
+    let loaded = secs(start.elapsed());
+    // every view's eye against the f32 range rule, before anything renders
+    let clock = Instant::now();
+    for (k, camera) in cameras.iter().enumerate() {
+        views
+            .check(camera)
+            .map_err(|e| in_view(source, &lines, k, e))?;
+    }
+    let checked = secs(clock.elapsed());
     let mut stats = Stats {
         version: env!("CARGO_PKG_VERSION"),
         command: std::env::args_os()
@@ -211,7 +220,8 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
             .collect(),
         ..Stats::default()
     };
-    stats.phases.push(("load", secs(start.elapsed())));
+    stats.phases.push(("load", loaded));
+    stats.phases.push(("check", checked));
     let loop_start = Instant::now();
     let mut times = ViewTimes::default();
     let (w, h) = (s.view.width as usize, s.view.height as usize);
@@ -229,9 +239,6 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
             .collect();
         let mut set = OutputSet::create(&outputs, &[])?;
         let clock = Instant::now();
-        views
-            .check(camera)
-            .map_err(|e| in_view(source, &lines, k, e))?;
         let renderer = views.renderer(camera)?;
         let setup = secs(clock.elapsed());
         let clock = Instant::now();

@@ -99,14 +99,23 @@ pub fn parse_views(text: &str, file: &Path) -> Result<Vec<ViewLine>> {
 /// `up`, by `2 pi k / n` for k = 0..n (view 0 is `spec` itself), counter-clockwise seen from
 /// the tip of `up`. Distance to the axis and height along it stay those of `spec`; look, up and
 /// fov are kept. Rodrigues' rotation of `e = eye - look` about the unit axis `a`:
-/// `e cos + (a x e) sin + a (a . e)(1 - cos)`, in f64.
+/// `e cos + (a x e) sin + a (a . e)(1 - cos)`, in f64. Quarter turns use their exact sine and
+/// cosine (0 and +-1, where `sin_cos` gives 6e-17 for 0): a camera orbiting a flat scene then
+/// lies exactly in its plane at 90 degrees, where the scene is seen edge-on and not drawn,
+/// rather than 1e-16 off it, where the f32 range rule (`validate::f32_range`) refuses edges
+/// that point at the eye.
 pub fn orbit(spec: &CameraSpec, n: usize) -> Vec<CameraSpec> {
     let a = spec.up.normalize();
     let e = spec.eye - spec.look;
     (0..n)
         .map(|k| {
-            let theta = std::f64::consts::TAU * k as f64 / n as f64;
-            let (sin, cos) = theta.sin_cos();
+            let (sin, cos) = match (4 * k % n == 0).then_some(4 * k / n) {
+                Some(0) => (0.0, 1.0),
+                Some(1) => (1.0, 0.0),
+                Some(2) => (0.0, -1.0),
+                Some(3) => (-1.0, 0.0),
+                _ => (std::f64::consts::TAU * k as f64 / n as f64).sin_cos(),
+            };
             let turned: DVec3 = e * cos + a.cross(e) * sin + a * a.dot(e) * (1.0 - cos);
             CameraSpec {
                 eye: if k == 0 { spec.eye } else { spec.look + turned },
@@ -155,6 +164,24 @@ mod tests {
         assert!(e.starts_with("v.txt:1:"), "{e}");
         let e = err("# nothing\n\n");
         assert!(e.contains("no camera lines"), "{e}");
+    }
+
+    #[test]
+    fn quarter_turns_are_exact() {
+        // scene 6's camera: a flat star in z = 0, seen from +z; the orbit about +y crosses the
+        // star's plane at 90 and 270 degrees, exactly
+        let spec = CameraSpec {
+            eye: DVec3::new(0.0, 0.0, 7.0),
+            look: DVec3::ZERO,
+            up: DVec3::Y,
+            fov_deg: None,
+        };
+        for n in [4, 12, 100] {
+            let path = orbit(&spec, n);
+            assert_eq!(path[n / 4].eye, DVec3::new(7.0, 0.0, 0.0), "{n}");
+            assert_eq!(path[n / 2].eye, DVec3::new(0.0, 0.0, -7.0), "{n}");
+            assert_eq!(path[3 * n / 4].eye, DVec3::new(-7.0, 0.0, 0.0), "{n}");
+        }
     }
 
     #[test]
