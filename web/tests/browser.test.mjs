@@ -286,6 +286,17 @@ test('Export PNG saves the frame; the camera line is one a scene accepts', async
   assert.ok(want.ids.some((i) => i >= 0));
 });
 
+test('the file picker opens a bare .obj with its framing camera, as -i x.obj does', async () => {
+  const obj = fs.readFileSync(path.join(root, 'scenes/meshes/bunny.obj'));
+  await page.setInputFiles('#file', [{ name: 'bunny.obj', mimeType: 'text/plain', buffer: obj }]);
+  await page.waitForFunction(() => window.lanecastApp.sceneName === 'bunny.obj' && !window.lanecastApp.dirty);
+  await page.evaluate(() => window.lanecastApp.frame());
+  const want = native('scenes/meshes/bunny.obj');
+  const ids = Buffer.from(await page.evaluate(() => window.btoaBytes(window.lanecastApp.lc.ids())), 'base64');
+  assert.ok(ids.equals(Buffer.from(want.ids.buffer, want.ids.byteOffset, 4 * W * H)), 'ids differ from --ids');
+  await page.screenshot({ path: path.join(shots, 'bunny-obj.png') });
+});
+
 test('the colour controls shade as -cm, -cv and --seed do', async () => {
   await page.mouse.move(5, 395);
   await page.selectOption('#scene', 'scene4');

@@ -101,7 +101,7 @@ async function openFiles(list) {
 }
 
 const menu = await (await fetch('scenes/menu.json')).json();
-ui.scene.append(new Option('(dropped file)', ''));
+ui.scene.append(new Option('(opened file)', ''));
 for (const m of menu) ui.scene.append(new Option(m.name, m.name));
 ui.scene.onchange = () => {
   const m = menu.find((e) => e.name === ui.scene.value);
