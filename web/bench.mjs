@@ -59,7 +59,8 @@ function native(file) {
   };
   try {
     const one = run(['--repeat', '20', '-o', path.join(dir, 'x.png')]);
-    const orbit = run(['--orbit', '12', '--ids', path.join(dir, 'i_%05d.npy')]);
+    // every output into the temp folder: without -o the images would land beside the scene
+    const orbit = run(['--orbit', '12', '--ids', path.join(dir, 'i_%05d.npy'), '-o', path.join(dir, 'v_%05d.bmp')]);
     const each = orbit?.views?.each?.map((v) => (v.setup_s + v.render_s) * 1e3).sort((x, y) => x - y);
     return { render: one ? one.render_best_s * 1e3 : null, view: each ? each[Math.floor(each.length / 2)] : null };
   } finally {
