@@ -302,6 +302,7 @@ pub(crate) fn same_file(a: &Path, b: &Path) -> bool {
 
 /// What names the same file as `path`, for telling many output names apart: [`resolve`]'s
 /// answer, else `path` as given.
+#[cfg(feature = "cli")]
 pub(crate) fn identity(path: &Path) -> PathBuf {
     resolve(path).unwrap_or_else(|| path.to_path_buf())
 }

@@ -56,6 +56,24 @@ pub(super) fn check_memory(width: u32, height: u32) -> Result<()> {
     Ok(())
 }
 
+/// The record of a render run as the settings give it, before anything has run: version,
+/// command line, scene, size, kernel, seed and `outputs` (what, path).
+pub(super) fn run_stats(s: &RenderSettings, outputs: Vec<(&'static str, String)>) -> Stats {
+    Stats {
+        version: env!("CARGO_PKG_VERSION"),
+        command: std::env::args_os()
+            .map(|a| a.to_string_lossy().into_owned())
+            .collect(),
+        scene: scene_name(&s.view.input),
+        width: s.view.width as usize,
+        height: s.view.height as usize,
+        kernel: s.kernel.name(),
+        seed: s.seed,
+        outputs,
+        ..Stats::default()
+    }
+}
+
 /// Writes an image to standard output (`-o -`); `Ok(false)` when the reader has closed the
 /// pipe (`-o - | head -c 8`): it wants no more, and as with ripgrep that is a quiet end, not an
 /// error.
@@ -87,22 +105,10 @@ pub(crate) fn render_command(s: &RenderSettings) -> Result<()> {
     check_memory(s.view.width, s.view.height)?;
     let method = s.view.method;
     let mut set = OutputSet::create(&outputs(s), &[("the input scene", &s.view.input)])?;
-    let mut stats = Stats {
-        version: env!("CARGO_PKG_VERSION"),
-        command: std::env::args_os()
-            .map(|a| a.to_string_lossy().into_owned())
-            .collect(),
-        scene: scene_name(&s.view.input),
-        width: s.view.width as usize,
-        height: s.view.height as usize,
-        kernel: s.kernel.name(),
-        seed: s.seed,
-        outputs: set
-            .paths()
-            .map(|(flag, p)| (stats_key(flag), p.display().to_string()))
-            .collect(),
-        ..Stats::default()
-    };
+    let outputs = set
+        .paths()
+        .map(|(f, p)| (stats_key(f), p.display().to_string()));
+    let mut stats = run_stats(s, outputs.collect());
     let mut clock = Instant::now();
     let lap = |name, stats: &mut Stats, clock: &mut Instant| {
         stats.phases.push((name, secs(clock.elapsed())));

@@ -8,7 +8,7 @@
 //! range rule (`scene::validate::f32_range`, relative to that eye). A bad view stops the run
 //! with nothing written.
 
-use super::render::{check_memory, encode_to_stdout, stats_key};
+use super::render::{check_memory, encode_to_stdout, run_stats, stats_key};
 use crate::cli::{RenderSettings, ViewSource};
 use crate::error::{Error, Result};
 use crate::output::{self, OutputKind, OutputSet, Pattern};
@@ -17,7 +17,7 @@ use crate::render::{Options, Views};
 use crate::scene::views::{ViewLine, load_views, orbit};
 use crate::scene::{CameraSpec, Scene, load_scene_meshes};
 use crate::shade::shade;
-use crate::stats::{Stats, ViewTimes, scene_name, secs};
+use crate::stats::{Stats, ViewTimes, secs};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -200,25 +200,15 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
             .map_err(|e| in_view(source, &lines, k, e))?;
     }
     let checked = secs(clock.elapsed());
+    let outputs = outs
+        .iter()
+        .map(|o| (stats_key(o.flag), o.pattern.name(0).display().to_string()))
+        .chain(s.stats.iter().map(|p| ("stats", p.display().to_string())));
     let mut stats = Stats {
-        version: env!("CARGO_PKG_VERSION"),
-        command: std::env::args_os()
-            .map(|a| a.to_string_lossy().into_owned())
-            .collect(),
-        scene: scene_name(&s.view.input),
-        width: s.view.width as usize,
-        height: s.view.height as usize,
-        kernel: s.kernel.name(),
-        seed: s.seed,
         primitives: scene.counts(),
         method: super::method_name(s.view.method),
         precision: super::precision_name(s.kernel.precision(), s.view.method),
-        outputs: outs
-            .iter()
-            .map(|o| (stats_key(o.flag), o.pattern.name(0).display().to_string()))
-            .chain(s.stats.iter().map(|p| ("stats", p.display().to_string())))
-            .collect(),
-        ..Stats::default()
+        ..run_stats(s, outputs.collect())
     };
     stats.phases.push(("load", loaded));
     stats.phases.push(("check", checked));

@@ -109,7 +109,7 @@ pub fn orbit(spec: &CameraSpec, n: usize) -> Vec<CameraSpec> {
     let e = spec.eye - spec.look;
     (0..n)
         .map(|k| {
-            let (sin, cos) = match (4 * k % n == 0).then_some(4 * k / n) {
+            let (sin, cos) = match (4 * k).is_multiple_of(n).then_some(4 * k / n) {
                 Some(0) => (0.0, 1.0),
                 Some(1) => (1.0, 0.0),
                 Some(2) => (0.0, -1.0),
@@ -226,7 +226,7 @@ mod tests {
                     (spec.look, spec.up, spec.fov_deg)
                 );
             }
-            if n >= 4 && n % 4 == 0 {
+            if n >= 4 && n.is_multiple_of(4) {
                 // a quarter turn moves the eye by sqrt(2) r
                 let d = (path[n / 4].eye - spec.eye).length();
                 assert!((d - r0 * 2f64.sqrt()).abs() <= 4.0 * tol, "{d} {r0}");
