@@ -493,3 +493,49 @@ fn a_view_out_of_range_is_refused_before_anything_renders() {
     assert_success(&o, "scene 6 orbit");
     assert_eq!(dir.entries().len(), 13);
 }
+
+/// Two many-view runs writing different frames into one folder at once both complete: each
+/// view's set takes the folder's lock only to create its temporaries and to commit.
+#[cfg(unix)]
+#[test]
+fn concurrent_view_runs_into_one_folder_both_complete() {
+    use std::process::{Command, Stdio};
+    let dir = TempDir::new("views-concurrent");
+    let scene = seed_scene(2);
+    let scene = scene.to_str().unwrap();
+    let spawn = |prefix: &str| {
+        Command::new(env!("CARGO_BIN_EXE_lanecast"))
+            .args([
+                "-i",
+                scene,
+                "--orbit",
+                "8",
+                "-size",
+                "160x120",
+                "--threads",
+                "1",
+            ])
+            .args([
+                "-o",
+                &format!("{prefix}%d.png"),
+                "--ids",
+                &format!("{prefix}%d.npy"),
+            ])
+            .current_dir(&dir.path)
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap()
+    };
+    let (a, b) = (spawn("a"), spawn("b"));
+    for child in [a, b] {
+        let o = child.wait_with_output().unwrap();
+        assert_success(&o, "concurrent view run");
+    }
+    for k in 0..8 {
+        let (ia, ib) = (format!("a{k}.npy"), format!("b{k}.npy"));
+        assert!(read(&dir.join(&ia)) == read(&dir.join(&ib)), "view {k}");
+    }
+    let entries = dir.entries();
+    assert_eq!(entries.len(), 32, "{entries:?}");
+}
