@@ -83,7 +83,9 @@ mod seq {
             self.into_seq().for_each(f)
         }
 
-        /// rayon's `try_for_each` for `Result` (its `Try` trait is not stable).
+        /// rayon's `try_for_each` for `Result` (its `Try` trait is not stable). Used by the
+        /// parallel file read, which exists on unix only.
+        #[cfg_attr(not(unix), allow(dead_code))]
         fn try_for_each<E, F>(self, f: F) -> Result<(), E>
         where
             F: FnMut(Self::Item) -> Result<(), E>,
