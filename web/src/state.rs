@@ -1,0 +1,261 @@
+//! The session: the scene on show, the last frame and its camera, and the files a scene's
+//! `mesh` lines may name, with loading, rendering through [`Views`], shading and picking.
+
+use crate::report::Pick;
+use lanecast::scene::{Shape, parse_mesh_bytes, parse_scene_with};
+use lanecast::{Camera, CameraSpec, ColorMode, Frame, Options, Scene, Variation, Views};
+use std::collections::HashMap;
+use std::path::Path;
+
+/// A scene ready for views, with what picking needs beside it.
+#[derive(Debug)]
+pub struct Loaded {
+    /// The parsed scene.
+    pub scene: Scene,
+    /// For each scene line holding a `mesh` (0 for a bare mesh), the id of its first face.
+    mesh_first: HashMap<usize, usize>,
+}
+
+impl Loaded {
+    fn new(scene: Scene) -> Loaded {
+        let mesh_lines: Vec<usize> = scene.shapes.meshes().map(|(_, l)| l).collect();
+        let mut mesh_first = HashMap::new();
+        if !mesh_lines.is_empty() {
+            for (id, line) in scene.shapes.lines().enumerate() {
+                if mesh_lines.contains(&line) {
+                    mesh_first.entry(line).or_insert(id);
+                }
+            }
+        }
+        Loaded { scene, mesh_first }
+    }
+
+    /// The mesh face index of primitive `id` when it is a mesh triangle.
+    pub fn face(&self, id: usize) -> Option<usize> {
+        let line = self.scene.shapes.line(id);
+        self.mesh_first.get(&line).map(|first| id - first)
+    }
+}
+
+/// Everything the module holds between calls.
+#[derive(Default)]
+pub struct State {
+    /// Files that `mesh` lines may name, by the name JS gave them.
+    pub files: HashMap<String, Vec<u8>>,
+    /// The scene on show.
+    pub loaded: Option<Loaded>,
+    /// The last frame rendered, and the camera it was rendered from.
+    pub frame: Option<(Frame<f32>, Camera)>,
+    rgba: Vec<u8>,
+    pub(crate) message: String,
+}
+
+impl State {
+    /// Loads the file `name` (a scene, or a bare mesh by its `.obj`/`.ply` extension); on
+    /// failure the previous scene stays and the error is the command line's message.
+    pub fn load(&mut self, name: &str, bytes: &[u8]) -> Result<&Loaded, String> {
+        let path = Path::new(name);
+        let ext = path
+            .extension()
+            .map(|e| e.to_string_lossy().to_ascii_lowercase());
+        let scene = if matches!(ext.as_deref(), Some("obj" | "ply")) {
+            parse_mesh_bytes(bytes, path)
+        } else {
+            let files = &self.files;
+            // A file given as `meshes/x.obj` matches the resolved path `scenes/meshes/x.obj`;
+            // a dropped file, which knows only its own name, matches by that name. The
+            // longest match wins.
+            let lookup = |p: &Path| -> Option<Vec<u8>> {
+                let found = files.iter().filter(|(k, _)| p.ends_with(k.as_str()));
+                found.max_by_key(|(k, _)| k.len()).map(|(_, b)| b.clone())
+            };
+            parse_scene_with(bytes, path, &lookup)
+        }
+        .map_err(|e| e.to_string())?;
+        self.frame = None;
+        Ok(self.loaded.insert(Loaded::new(scene)))
+    }
+
+    /// Renders the loaded scene from `spec` (the scene's camera when `None`) at the given size,
+    /// through [`Views`], reusing the last frame's buffers.
+    pub fn render(
+        &mut self,
+        width: u32,
+        height: u32,
+        spec: Option<CameraSpec>,
+    ) -> Result<&Frame<f32>, String> {
+        let loaded = self.loaded.as_ref().ok_or("no scene loaded")?;
+        let scene = &loaded.scene;
+        let camera = match spec {
+            Some(spec) => Camera::look_at(&spec, width, height),
+            None => Camera::for_scene(scene, width, height, None),
+        }
+        .map_err(|e| e.to_string())?;
+        let options = Options::default();
+        let views = Views::new(scene, &options).map_err(|e| e.to_string())?;
+        if let Some((spare, _)) = self.frame.take() {
+            views.recycle(spare);
+        }
+        let frame = views.render(&camera).map_err(|e| e.to_string())?;
+        Ok(&self.frame.insert((frame, camera)).0)
+    }
+
+    /// The last frame as RGBA (`ColorMode`, `Variation` and seed as the command line's
+    /// `-cm`, `-cv` and `--seed`), primitives `hover` and `pinned` highlighted.
+    pub fn shade(
+        &mut self,
+        mode: ColorMode,
+        variation: Variation,
+        seed: u64,
+        hover: i32,
+        pinned: i32,
+    ) -> &[u8] {
+        let Some((frame, _)) = &self.frame else {
+            self.rgba.clear();
+            return &self.rgba;
+        };
+        let rgb = frame.rgb(mode, variation, seed);
+        let (w, h) = (frame.width as usize, frame.height as usize);
+        self.rgba.resize(w * h * 4, 255);
+        for (o, i) in self.rgba.chunks_exact_mut(4).zip(rgb.chunks_exact(3)) {
+            o[..3].copy_from_slice(i);
+        }
+        for (id, tint) in [(hover, [255u16, 255, 255]), (pinned, [255, 220, 0])] {
+            if id >= 0 {
+                highlight(&mut self.rgba, &frame.ids, w, h, id, tint);
+            }
+        }
+        &self.rgba
+    }
+
+    /// What lies under pixel (x, y) of the last frame: `None` outside the frame or on the
+    /// background.
+    pub fn pick(&self, x: u32, y: u32) -> Option<Pick> {
+        let (frame, camera) = self.frame.as_ref()?;
+        let loaded = self.loaded.as_ref()?;
+        if x >= frame.width || y >= frame.height {
+            return None;
+        }
+        let at = y as usize * frame.width as usize + x as usize;
+        let id = frame.ids[at];
+        if id < 0 {
+            return None;
+        }
+        let depth = frame.depth[at];
+        // the pixel's ray, as the f64 oracle forms it: f + sx r + sy u, normalised
+        let dir = (camera.f + camera.sx::<f64>(x) * camera.r + camera.sy::<f64>(y) * camera.u)
+            .normalize();
+        let shapes = &loaded.scene.shapes;
+        let id_u = id as usize;
+        let kind = match shapes.get(id_u) {
+            Shape::Sphere { .. } => "sphere",
+            Shape::Triangle(_) => "triangle",
+            Shape::Quad(_) => "quad",
+        };
+        Some(Pick {
+            id,
+            kind,
+            line: shapes.line(id_u),
+            face: loaded.face(id_u),
+            depth,
+            point: (camera.eye + dir * depth as f64).to_array(),
+        })
+    }
+}
+
+/// Brightens primitive `id`'s pixels toward `tint` and draws its outline in `tint`.
+fn highlight(rgba: &mut [u8], ids: &[i32], w: usize, h: usize, id: i32, tint: [u16; 3]) {
+    for y in 0..h {
+        for x in 0..w {
+            let at = y * w + x;
+            if ids[at] != id {
+                continue;
+            }
+            let edge = x == 0
+                || y == 0
+                || x + 1 == w
+                || y + 1 == h
+                || ids[at - 1] != id
+                || ids[at + 1] != id
+                || ids[at - w] != id
+                || ids[at + w] != id;
+            let p = &mut rgba[at * 4..at * 4 + 3];
+            for (c, t) in p.iter_mut().zip(tint) {
+                *c = if edge {
+                    t as u8
+                } else {
+                    ((*c as u16 * 2 + t) / 3) as u8
+                };
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::report::scene_json;
+
+    const TEXT: &str = "camera eye 0 0 10 look 0 0 0 up 0 1 0 fov 40\n\
+                        sphere 0 0 0 1\n\
+                        mesh m.obj\n";
+    const OBJ: &str = "v -4 -3 -1\nv 4 -3 -1\nv 4 3 -1\nv -4 3 -1\nf 1 2 3\nf 1 3 4\n";
+
+    #[test]
+    fn picks_name_the_primitive_its_line_face_and_hit_point() {
+        let mut s = State::default();
+        s.files.insert("m.obj".into(), OBJ.as_bytes().to_vec());
+        s.load("dir/a.sc", TEXT.as_bytes()).unwrap();
+        s.render(41, 41, None).unwrap();
+        let centre = s.pick(20, 20).unwrap();
+        assert_eq!((centre.id, centre.kind, centre.line), (0, "sphere", 2));
+        assert_eq!(centre.face, None);
+        assert!((centre.depth - 9.0).abs() < 1e-5, "{centre:?}");
+        assert!((centre.point[2] - 1.0).abs() < 1e-5, "{centre:?}");
+        let corner = s.pick(2, 8).unwrap(); // upper left: the second face of the mesh
+        assert_eq!((corner.id, corner.kind, corner.line), (2, "triangle", 3));
+        assert_eq!(corner.face, Some(1));
+        assert!((corner.point[2] + 1.0).abs() < 1e-5, "{corner:?}");
+        assert!(s.pick(41, 0).is_none());
+    }
+
+    #[test]
+    fn a_bad_file_keeps_the_previous_scene() {
+        let mut s = State::default();
+        s.load(
+            "a.sc",
+            b"camera eye 0 0 10 look 0 0 0 up 0 1 0\nsphere 0 0 0 2\n",
+        )
+        .unwrap();
+        let e = s.load(
+            "bad.sc",
+            b"camera eye 0 0 10 look 0 0 0 up 0 1 0\nsphere 0 0\n",
+        );
+        assert!(e.unwrap_err().starts_with("bad.sc:2:"));
+        let e = s.load("a.sc", TEXT.as_bytes()).unwrap_err();
+        assert!(e.starts_with("a.sc:3:") && e.contains("m.obj"), "{e}");
+        assert_eq!(s.render(8, 8, None).unwrap().ids[27], 0);
+        assert!(s.loaded.as_ref().unwrap().scene.source.ends_with("a.sc"));
+    }
+
+    #[test]
+    fn shading_highlights_the_hovered_primitive() {
+        let mut s = State::default();
+        s.load(
+            "a.sc",
+            b"camera eye 0 0 10 look 0 0 0 up 0 1 0\nsphere 0 0 0 3\n",
+        )
+        .unwrap();
+        s.render(16, 16, None).unwrap();
+        let plain = s
+            .shade(ColorMode::Random, Variation::Linear, 0, -1, -1)
+            .to_vec();
+        let lit = s
+            .shade(ColorMode::Random, Variation::Linear, 0, 0, -1)
+            .to_vec();
+        let at = (8 * 16 + 8) * 4;
+        assert_ne!(plain[at..at + 3], lit[at..at + 3]);
+        assert_eq!(plain[..4], lit[..4]); // background untouched
+        assert!(scene_json(s.loaded.as_ref().unwrap()).contains("\"primitives\":1"));
+    }
+}
