@@ -1,0 +1,232 @@
+//! Scenes: `lanecast.Scene`, loaded from a file or from arrays, with its prepared views (one
+//! per precision); renders and pickling delegate to `render` and `pickle`.
+
+use crate::arrays::{float_rows, index_rows};
+use crate::camera::{PyCamera, camera_arg, cameras_arg};
+use crate::errors::{py_err, value_error};
+use crate::pickle::{self, SceneState};
+use crate::render::{self, Render};
+use crate::threads::run;
+use lanecast::{CameraSpec, Method, Options, Scene, Views};
+use pyo3::exceptions::PyRuntimeError;
+use pyo3::prelude::*;
+use pyo3::types::PyTuple;
+use std::path::PathBuf;
+use std::sync::{Arc, Mutex};
+
+/// The precisions of `--precision`, as indices into a scene's prepared views.
+const PRECISIONS: [(&str, Method); 3] = [
+    ("auto", Method::Auto),
+    ("f32", Method::Default),
+    ("f64", Method::F64x4),
+];
+
+fn precision_index(name: &str) -> PyResult<usize> {
+    PRECISIONS
+        .iter()
+        .position(|(n, _)| *n == name)
+        .ok_or_else(|| {
+            value_error(format!(
+                "precision={name:?}: must be \"auto\", \"f32\" or \"f64\""
+            ))
+        })
+}
+
+// A scene and its prepared views for one precision, in one value: `Views` borrows the scene.
+self_cell::self_cell!(
+    pub(crate) struct Prepared {
+        owner: Arc<Scene>,
+        #[not_covariant]
+        dependent: Views,
+    }
+);
+
+/// A loaded, validated scene, and its prepared views (one per precision, made on first use and
+/// kept for every later render).
+#[pyclass(frozen, module = "lanecast._lanecast", name = "Scene")]
+pub(crate) struct PyScene {
+    scene: Arc<Scene>,
+    prepared: Mutex<[Option<Arc<Prepared>>; 3]>,
+}
+
+impl PyScene {
+    fn new(scene: Scene) -> PyScene {
+        PyScene {
+            scene: Arc::new(scene),
+            prepared: Mutex::new([None, None, None]),
+        }
+    }
+
+    fn prepared(&self, precision: usize) -> PyResult<Arc<Prepared>> {
+        let mut slots = self.prepared.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(p) = &slots[precision] {
+            return Ok(p.clone());
+        }
+        let options = Options {
+            method: PRECISIONS[precision].1,
+            ..Options::default()
+        };
+        let p = Prepared::try_new(self.scene.clone(), |s| Views::new(s, &options))
+            .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+        let p = Arc::new(p);
+        slots[precision] = Some(p.clone());
+        Ok(p)
+    }
+}
+
+#[pymethods]
+impl PyScene {
+    /// Scene.load(path): a `.sc` scene (meshes included), or a `.obj` / `.ply` mesh alone
+    /// seen by the command line's framing camera. Every rule of the command line applies;
+    /// bad content raises lanecast.SceneError with file, line and column.
+    #[staticmethod]
+    fn load(py: Python<'_>, path: PathBuf) -> PyResult<PyScene> {
+        let scene = run(py, None, || lanecast::load_scene(&path))?.map_err(|e| py_err(py, e))?;
+        Ok(PyScene::new(scene))
+    }
+
+    /// Scene.from_arrays(vertices=(N, 3), triangles=(M, 3), quads=(Q, 4), spheres=(K, 4),
+    /// camera=None): triangles and quads index `vertices` (any integer dtype); spheres are
+    /// rows of centre and radius. Ids: triangles first, then quads, then spheres. Without a
+    /// camera, the triangles are framed as `lanecast mesh.obj` frames a mesh. Bad arrays raise
+    /// ValueError naming the array and row.
+    #[staticmethod]
+    #[pyo3(signature = (vertices = None, triangles = None, quads = None, spheres = None, camera = None, name = "<arrays>"))]
+    fn from_arrays(
+        py: Python<'_>,
+        vertices: Option<&Bound<'_, PyAny>>,
+        triangles: Option<&Bound<'_, PyAny>>,
+        quads: Option<&Bound<'_, PyAny>>,
+        spheres: Option<&Bound<'_, PyAny>>,
+        camera: Option<&Bound<'_, PyAny>>,
+        name: &str,
+    ) -> PyResult<PyScene> {
+        let v = float_rows::<3>(py, "vertices", vertices)?;
+        let t = index_rows::<3>(py, "triangles", triangles)?;
+        let q = index_rows::<4>(py, "quads", quads)?;
+        let s = float_rows::<4>(py, "spheres", spheres)?;
+        let cam = match camera {
+            None => None,
+            Some(c) => Some(
+                c.extract::<PyCamera>()
+                    .map_err(|_| value_error("camera: expected a lanecast.Camera"))?
+                    .spec,
+            ),
+        };
+        let source = PathBuf::from(name);
+        let scene = run(py, None, || {
+            lanecast::scene::scene_from_arrays(&source, cam, &v, &t, &q, &s)
+        })?
+        .map_err(|e| py_err(py, e))?;
+        Ok(PyScene::new(scene))
+    }
+
+    /// Where the scene came from (its file, or the name given to from_arrays).
+    #[getter]
+    fn source(&self) -> PathBuf {
+        self.scene.source.clone()
+    }
+
+    /// Warnings that did not stop the load (degenerate mesh triangles), each a full message.
+    #[getter]
+    fn warnings(&self) -> Vec<String> {
+        self.scene.warnings.clone()
+    }
+
+    /// The scene's own camera (its `camera` line, or the framing camera).
+    #[getter]
+    fn camera(&self) -> PyCamera {
+        PyCamera {
+            spec: CameraSpec {
+                fov_deg: Some(self.scene.camera.fov_deg.unwrap_or(lanecast::DEFAULT_FOV)),
+                ..self.scene.camera
+            },
+            size: None,
+        }
+    }
+
+    /// How many primitives of each type: (spheres, triangles, quads).
+    #[getter]
+    fn counts(&self) -> (usize, usize, usize) {
+        self.scene.counts()
+    }
+
+    fn __len__(&self) -> usize {
+        self.scene.shapes.len()
+    }
+
+    fn __repr__(&self) -> String {
+        let (s, t, q) = self.scene.counts();
+        format!(
+            "lanecast.Scene({:?}: {s} spheres, {t} triangles, {q} quads)",
+            self.scene.source
+        )
+    }
+
+    /// scene.render(camera=None, width=None, height=None, precision="auto", threads=None,
+    /// zdepth=False): one view, as a `Render` with `ids` (H, W) int32 (-1: background) and
+    /// `depth` (H, W) float32 (distance along the unit ray, +inf: background), and `zdepth`
+    /// (distance along the optical axis) when asked for. `camera` None is the scene's own;
+    /// the size is the camera's (from intrinsics), else 640x480. The ids and depth buffers
+    /// are the library's, moved into numpy without a copy. The GIL is released while the
+    /// view renders, on `threads` threads (None: all cores).
+    #[pyo3(signature = (camera = None, width = None, height = None, precision = "auto", threads = None, zdepth = false))]
+    #[allow(clippy::too_many_arguments)]
+    fn render(
+        &self,
+        py: Python<'_>,
+        camera: Option<&Bound<'_, PyAny>>,
+        width: Option<u32>,
+        height: Option<u32>,
+        precision: &str,
+        threads: Option<usize>,
+        zdepth: bool,
+    ) -> PyResult<Render> {
+        let cam = camera_arg(&self.scene, camera)?.resolve(width, height)?;
+        let prepared = self.prepared(precision_index(precision)?)?;
+        render::one(py, &prepared, &cam, threads, zdepth)
+    }
+
+    /// scene.render_views(cameras, width=None, height=None, precision="auto", threads=None,
+    /// zdepth=False): many views from the scene's prepared views, as one `Render` whose arrays
+    /// are stacked (V, H, W), view v from cameras[v]; every camera must give the same size.
+    /// Each view is rendered by the library into its recycled frame and copied into the
+    /// stacked arrays. The GIL is released for the whole batch.
+    #[pyo3(signature = (cameras, width = None, height = None, precision = "auto", threads = None, zdepth = false))]
+    #[allow(clippy::too_many_arguments)]
+    fn render_views(
+        &self,
+        py: Python<'_>,
+        cameras: &Bound<'_, PyAny>,
+        width: Option<u32>,
+        height: Option<u32>,
+        precision: &str,
+        threads: Option<usize>,
+        zdepth: bool,
+    ) -> PyResult<Render> {
+        let cams = cameras_arg(cameras, width, height)?;
+        let (w, h) = match cams.first() {
+            Some(c) => (c.width as usize, c.height as usize),
+            None => (
+                width.unwrap_or(640) as usize,
+                height.unwrap_or(480) as usize,
+            ),
+        };
+        let prepared = self.prepared(precision_index(precision)?)?;
+        render::views(py, &prepared, &cams, (w, h), threads, zdepth)
+    }
+
+    /// The scene by value, compactly, for pickling: (version, source, camera, fov or None,
+    /// warnings, runs), each run ("loose", kinds uint8, numbers float64, lines uint32) or
+    /// ("mesh", vertices float64 (n, 3), faces uint32 (m, 3), line).
+    fn _state<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
+        pickle::state(py, &self.scene)
+    }
+
+    /// The scene `_state` gave. The state is trusted as any pickle is (it was a validated
+    /// scene), but its structure is checked, so a damaged one raises ValueError.
+    #[staticmethod]
+    fn _from_state(state: SceneState<'_>) -> PyResult<PyScene> {
+        pickle::from_state(state).map(PyScene::new)
+    }
+}
