@@ -1,0 +1,216 @@
+//! The command line as clap sees it: the flags, their help, defaults and value ranges. The
+//! checks that tie flags to each other, and the settings they resolve to, are in `cli.rs`.
+
+use clap::{Args, Parser, Subcommand, ValueEnum};
+use std::path::PathBuf;
+
+pub(super) const EXAMPLES: &str = "\
+Examples:
+  lanecast -i scenes/scene1.sc                      writes scenes/scene1.png (640x480)
+  lanecast -i scene1.sc -o scene1.png -size 800x600 -fov 80
+  lanecast -i scene1.sc -cm ordered -cv log -time
+  lanecast -i scene1.sc --kernel scalar --threads 1 --ids ids.npy --depth depth.npy
+  lanecast compare -i scene1.sc -size 1920x1080 -o diff.png
+
+Exit codes: 0 success, 2 bad usage or bad input (message names the file and line, or the
+argument), 75 an output folder another run kept locked longer than LANECAST_LOCK_WAIT seconds
+(default 30; nothing written), 130 interrupted, 1 anything else (I/O errors, a failed
+comparison).";
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "lanecast",
+    version,
+    about = "Ray-casts a .sc scene (camera, spheres, triangles, quads) to an image: \
+             8-wide SIMD packets, with a scalar f64 oracle.",
+    after_help = EXAMPLES,
+    subcommand_negates_reqs = true,
+    args_conflicts_with_subcommands = true
+)]
+pub(super) struct Cli {
+    #[command(subcommand)]
+    pub(super) command: Option<Sub>,
+    #[command(flatten)]
+    pub(super) render: RenderArgs,
+}
+
+#[derive(Subcommand, Debug)]
+pub(super) enum Sub {
+    /// Renders with the packet kernel and the f64 scalar oracle and reports where they differ.
+    #[command(
+        after_help = "Example:\n  lanecast compare -i scenes/scene4.sc -size 1920x1080 -o diff.png"
+    )]
+    Compare(CompareArgs),
+}
+
+#[derive(Args, Debug)]
+pub(super) struct View {
+    /// Scene file (.sc), or a mesh rendered alone with a framing camera (.obj, .ply)
+    #[arg(short = 'i', long = "input", value_name = "SCENE.sc", required = true)]
+    pub(super) input: Option<PathBuf>,
+    /// Camera position X,Y,Z, replacing the scene's eye (validated as the camera line is)
+    #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true)]
+    pub(super) eye: Option<String>,
+    /// Point the camera looks at, X,Y,Z, replacing the scene's look
+    #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true)]
+    pub(super) look: Option<String>,
+    /// Camera up direction X,Y,Z, replacing the scene's up
+    #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true)]
+    pub(super) up: Option<String>,
+    /// Image size WIDTHxHEIGHT, e.g. 800x600 (single-dash form: -size).
+    #[arg(
+        long,
+        value_name = "WxH",
+        default_value = "640x480",
+        allow_hyphen_values = true
+    )]
+    pub(super) size: String,
+    /// Horizontal field of view in degrees, 0 < FOV < 180 [default: the scene's, else 60]
+    /// (single-dash form: -fov).
+    #[arg(long, value_name = "DEGREES", allow_negative_numbers = true)]
+    pub(super) fov: Option<f64>,
+    /// Worker threads [default: all cores]. The lab's brute-force methods (mt, watertight,
+    /// plane, naive, world-f32) run on one thread and take no --threads above 1.
+    #[arg(long, value_name = "N")]
+    pub(super) threads: Option<usize>,
+    /// Acceleration: auto (tiles from 2 primitives on), none (test every primitive), tiles
+    /// (primitives binned into screen tiles, nearest first), bvh (a bounding volume
+    /// hierarchy). Every kernel and precision takes each; the lab's brute-force methods take
+    /// none or auto.
+    #[arg(long, value_enum, default_value = "auto")]
+    pub(super) accel: AccelArg,
+    /// Intersection method of the simd kernel: eplane+stable (the default: edge planes through
+    /// the eye, stable spheres), mt, watertight, plane, naive, world-f32, f64x4. f64x4 takes
+    /// --accel and every thread; the others run the accuracy lab's brute-force packet driver
+    /// on one thread.
+    #[arg(long, value_name = "METHOD", default_value = "eplane+stable",
+          value_parser = ["eplane+stable", "mt", "watertight", "plane", "naive", "world-f32", "f64x4"])]
+    pub(super) method: String,
+    /// Precision of the simd kernel: auto (f32x8 lanes, and each hit f32 cannot hold to 1e-5
+    /// relative decided again in f64), f32 (f32x8 alone) or f64 (f64x4, two per packet: the
+    /// f64x4 method). With --kernel scalar or scalar-f32, only that kernel's own (f64, f32).
+    #[arg(long, value_name = "BITS", default_value = "auto", value_parser = ["auto", "f32", "f64"])]
+    pub(super) precision: String,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AccelArg {
+    Auto,
+    None,
+    Bvh,
+    Tiles,
+}
+
+impl From<AccelArg> for crate::accel::Accel {
+    fn from(a: AccelArg) -> crate::accel::Accel {
+        match a {
+            AccelArg::Auto => crate::accel::Accel::Auto,
+            AccelArg::None => crate::accel::Accel::None,
+            AccelArg::Bvh => crate::accel::Accel::Bvh,
+            AccelArg::Tiles => crate::accel::Accel::Tiles,
+        }
+    }
+}
+
+#[derive(Args, Debug)]
+pub(super) struct RenderArgs {
+    #[command(flatten)]
+    pub(super) view: View,
+    /// Output image, .png or .bmp, or - for standard output [default: the input path with
+    /// extension .png].
+    #[arg(short = 'o', long = "output", value_name = "IMAGE")]
+    pub(super) output: Option<PathBuf>,
+    /// Image format of -o - (standard output): png or bmp [default: png]. With a file name the
+    /// extension decides, and a --format that disagrees is refused.
+    #[arg(long, value_name = "FORMAT", value_parser = ["png", "bmp"])]
+    pub(super) format: Option<String>,
+    /// Colour per primitive: random (seeded) or ordered (palette by first appearance)
+    /// (single-dash form: -cm).
+    #[arg(long = "color-mode", value_name = "MODE", default_value = "random",
+          value_parser = ["random", "ordered"])]
+    pub(super) color_mode: String,
+    /// Brightness against hit distance: linear or log (single-dash form: -cv).
+    #[arg(long = "color-variation", value_name = "VARIATION", default_value = "linear",
+          value_parser = ["linear", "log"])]
+    pub(super) color_variation: String,
+    /// Print the time of each phase and primary rays per second to stderr (single-dash: -time).
+    #[arg(long)]
+    pub(super) time: bool,
+    /// Intersection kernel: simd (8-wide f32 packets), scalar (one ray at a time, f64: the
+    /// oracle) or scalar-f32.
+    #[arg(long, value_enum, default_value = "simd")]
+    pub(super) kernel: KernelArg,
+    /// Seed of the random colour mode (refused with -cm ordered, which has no seed).
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    pub(super) seed: u64,
+    /// Also write per-pixel primitive ids (int32, -1 = background) as a (H, W) .npy file.
+    #[arg(long, value_name = "FILE.npy")]
+    pub(super) ids: Option<PathBuf>,
+    /// Also write per-pixel hit distances (float32, +inf = background) as a (H, W) .npy file.
+    #[arg(long, value_name = "FILE.npy")]
+    pub(super) depth: Option<PathBuf>,
+    /// Render K times and report the best and median render time (-time, --stats).
+    #[arg(long, value_name = "K", default_value_t = 1,
+          value_parser = clap::value_parser!(u32).range(1..=10_000))]
+    pub(super) repeat: u32,
+    /// Write a JSON record of the run: scene, size, primitives, kernel, method, acceleration,
+    /// threads, SIMD width, phase times, best and median render, rays/s, peak memory.
+    #[arg(long, value_name = "FILE.json")]
+    pub(super) stats: Option<PathBuf>,
+    /// Render one view per camera line of FILE (`camera eye X Y Z look X Y Z up X Y Z [fov
+    /// DEG]`), all from one load of the scene. Outputs take numbered names (-o
+    /// frames/view_%05d.png, views counted from 0) or -o - (images one after another).
+    #[arg(long, value_name = "FILE", conflicts_with = "orbit")]
+    pub(super) views: Option<PathBuf>,
+    /// Render N views on a turntable: the camera turned about its up axis through its look
+    /// point, at its distance and height. Outputs as with --views.
+    #[arg(long, value_name = "N",
+          value_parser = clap::value_parser!(u32).range(1..=crate::limits::MAX_VIEWS as i64))]
+    pub(super) orbit: Option<u32>,
+    /// With --views or --orbit: leave out every view whose outputs all exist (a rerun picks up
+    /// where an interrupted run stopped).
+    #[arg(long)]
+    pub(super) skip_existing: bool,
+}
+
+#[derive(Args, Debug)]
+pub(super) struct CompareArgs {
+    #[command(flatten)]
+    pub(super) view: View,
+    /// Write a diff image: the render dimmed, mismatches marked (red: unexcused, yellow: tie,
+    /// cyan: within the edge band).
+    #[arg(short = 'o', long = "output", value_name = "IMAGE")]
+    pub(super) output: Option<PathBuf>,
+    /// Unexcused id mismatches allowed, in parts per million of the pixels, before the exit
+    /// code turns to 1.
+    #[arg(long, value_name = "PPM", default_value_t = 0.0)]
+    pub(super) max_mismatch_ppm: f64,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum KernelArg {
+    Simd,
+    Scalar,
+    #[value(name = "scalar-f32")]
+    ScalarF32,
+}
+
+impl KernelArg {
+    pub fn name(self) -> &'static str {
+        match self {
+            KernelArg::Simd => "simd",
+            KernelArg::Scalar => "scalar",
+            KernelArg::ScalarF32 => "scalar-f32",
+        }
+    }
+
+    /// The precision a scalar kernel computes in; `None` for the simd kernel, whose lanes
+    /// `--precision` chooses.
+    pub fn precision(self) -> Option<&'static str> {
+        match self {
+            KernelArg::Simd => None,
+            KernelArg::Scalar => Some("f64"),
+            KernelArg::ScalarF32 => Some("f32"),
+        }
+    }
+}

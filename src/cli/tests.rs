@@ -1,0 +1,194 @@
+//! The command line's parsing and flag rules, on argument lists (no binary run).
+
+use super::*;
+
+fn args(s: &str) -> Vec<OsString> {
+    std::iter::once("lanecast")
+        .chain(s.split_whitespace())
+        .map(OsString::from)
+        .collect()
+}
+
+fn render(s: &str) -> RenderSettings {
+    match parse(args(s)).unwrap() {
+        Command::Render(r) => r,
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn original_invocations_parse() {
+    let r = render("-i scene1.sc");
+    assert_eq!(r.output, PathBuf::from("scene1.png"));
+    assert_eq!((r.view.width, r.view.height), (640, 480));
+    assert_eq!(r.color_mode, ColorMode::Random);
+    assert_eq!(r.variation, Variation::Linear);
+    assert_eq!(
+        render("-i scene1.sc -o out.bmp").output,
+        PathBuf::from("out.bmp")
+    );
+    let r = render("-i scene1.sc -size 800x600");
+    assert_eq!((r.view.width, r.view.height), (800, 600));
+    assert_eq!(render("-i scene1.sc -fov 80").view.fov, Some(80.0));
+    assert_eq!(
+        render("-i scene1.sc -cm ordered").color_mode,
+        ColorMode::Ordered
+    );
+    assert_eq!(render("-i scene1.sc -cv log").variation, Variation::Log);
+    assert!(render("-i scene1.sc -time").time);
+}
+
+#[test]
+fn long_forms_parse_the_same() {
+    let a = render("-i s.sc -o o.png -size 320x200 -fov 45 -cm ordered -cv log -time");
+    let b = render(
+        "--input s.sc --output o.png --size 320x200 --fov 45 --color-mode ordered \
+         --color-variation log --time",
+    );
+    assert_eq!(a, b);
+}
+
+#[test]
+fn bad_sizes_are_usage_errors() {
+    for s in [
+        "0x10",
+        "10x0",
+        "10",
+        "axb",
+        "100000x10",
+        "65536x65536",
+        "-5x10",
+    ] {
+        let e = parse(args(&format!("-i s.sc -size {s}"))).unwrap_err();
+        assert_eq!(e.exit_code(), 2, "{s}");
+        assert!(e.to_string().contains("size"), "{s}: {e}");
+    }
+}
+
+#[test]
+fn bad_fov_and_threads_are_usage_errors() {
+    for a in [
+        "-fov 0",
+        "-fov 180",
+        "-fov -3",
+        "--threads 0",
+        "--threads 1025",
+        "--kernel gpu",
+        "-cm rainbow",
+    ] {
+        let e = parse(args(&format!("-i s.sc {a}"))).unwrap_err();
+        assert_eq!(e.exit_code(), 2, "{a}: {e}");
+    }
+    assert!(parse(args("-o x.png")).is_err(), "-i is required");
+}
+
+#[test]
+fn help_is_info_and_lists_examples() {
+    match parse(args("-h")).unwrap() {
+        Command::Info(t) => assert!(t.contains("Examples:") && t.contains("--color-mode")),
+        other => panic!("{other:?}"),
+    }
+}
+
+/// The usage error of `s`, checking exit code 2.
+fn refused(s: &str) -> String {
+    let e = parse(args(s)).unwrap_err();
+    assert_eq!(e.exit_code(), 2, "{s}: {e}");
+    e.to_string()
+}
+
+#[test]
+fn combinations_that_cannot_apply_name_the_typed_flags() {
+    for (s, words) in [
+        (
+            "-i s.sc --method mt --accel bvh",
+            &["--accel bvh", "--method mt"][..],
+        ),
+        (
+            "-i s.sc --method f64x4 --precision f32",
+            &["--precision f32", "--method f64x4"],
+        ),
+        (
+            "-i s.sc --method naive --precision f64",
+            &["--precision f64", "--method naive"],
+        ),
+        (
+            "-i s.sc --kernel scalar --precision f32",
+            &["--precision f32", "--kernel scalar"],
+        ),
+        (
+            "-i s.sc --kernel scalar-f32 --method mt",
+            &["--method mt", "--kernel scalar-f32"],
+        ),
+        (
+            "-i s.sc --method plane --threads 3",
+            &["--threads 3", "--method plane"],
+        ),
+        ("-i s.sc -cm ordered --seed 2", &["--seed 2", "-cm ordered"]),
+        (
+            "compare -i s.sc --method mt --accel bvh",
+            &["--accel bvh", "--method mt"],
+        ),
+    ] {
+        let msg = refused(s);
+        for w in words {
+            assert!(msg.contains(w), "{s}: {msg}");
+        }
+    }
+    // the default method is never named when --method was not typed
+    assert!(!refused("-i s.sc --kernel scalar --precision f32").contains("--method"));
+    assert!(!refused("-i s.sc --precision f64 --kernel scalar-f32").contains("--method"));
+}
+
+#[test]
+fn consistent_combinations_resolve() {
+    use crate::accel::Accel;
+    use crate::render::Method;
+    let r = render("-i s.sc --kernel scalar --precision f64 --accel tiles");
+    assert_eq!(
+        (r.kernel, r.view.method),
+        (KernelArg::Scalar, Method::Default)
+    );
+    assert_eq!(r.view.accel, Accel::Tiles);
+    // every kernel and precision takes every acceleration and every thread
+    for s in [
+        "-i s.sc --kernel scalar --accel bvh --threads 2",
+        "-i s.sc --kernel scalar-f32 --accel bvh",
+        "-i s.sc --precision f64 --accel tiles --threads 2",
+        "-i s.sc --method f64x4 --accel bvh",
+    ] {
+        assert!(parse(args(s)).is_ok(), "{s}");
+    }
+    let r = render("-i s.sc --kernel scalar-f32 --precision f32 --method eplane+stable");
+    assert_eq!(r.view.method, Method::Default);
+    assert_eq!(render("-i s.sc --precision f64").view.method, Method::F64x4);
+    assert_eq!(render("-i s.sc --method f64x4").view.method, Method::F64x4);
+    let r = render("-i s.sc --method mt --accel none --threads 1 --precision f32");
+    assert_eq!((r.view.method, r.view.accel), (Method::Mt, Accel::None));
+    assert_eq!(render("-i s.sc --seed 5 -cm random").seed, 5);
+    assert_eq!(render("-i s.sc --threads 4").view.threads, Some(4));
+}
+
+#[test]
+fn messages_spell_single_dash_options_as_typed() {
+    assert!(refused("-i s.sc -size 0x1").starts_with("-size 0x1:"));
+    assert!(refused("-i s.sc --size 0x1").starts_with("--size 0x1:"));
+    assert!(refused("-i s.sc -cm rainbow").contains("'-cm <MODE>'"));
+    assert!(refused("-i s.sc --color-mode=ordered --seed 1").contains("--color-mode"));
+}
+
+#[test]
+fn compare_subcommand() {
+    match parse(args(
+        "compare -i s.sc -size 64x48 -o d.png --max-mismatch-ppm 5",
+    ))
+    .unwrap()
+    {
+        Command::Compare(c) => {
+            assert_eq!((c.view.width, c.view.height), (64, 48));
+            assert_eq!(c.output, Some(PathBuf::from("d.png")));
+            assert_eq!(c.max_mismatch_ppm, 5.0);
+        }
+        other => panic!("{other:?}"),
+    }
+}
