@@ -20,6 +20,7 @@ use crate::shade::shade;
 use crate::stats::{Stats, ViewTimes, secs};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::Ordering;
 use std::time::Instant;
 
 /// One numbered output: its flag, pattern and kind.
@@ -216,65 +217,69 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
     let mut times = ViewTimes::default();
     let (w, h) = (s.view.width as usize, s.view.height as usize);
     let flags: Vec<(&'static str, OutputKind)> = outs.iter().map(|o| (o.flag, o.kind)).collect();
-    for (k, camera) in cameras.iter().enumerate() {
-        let paths = &names[k];
-        if s.skip_existing && !paths.is_empty() && paths.iter().all(|p| p.is_file()) {
-            times.skipped += 1;
-            continue;
+    // the progress line (a terminal only, past a second) counts views
+    progress::with_progress(cameras.len(), |done| -> Result<()> {
+        for (k, camera) in cameras.iter().enumerate() {
+            let paths = &names[k];
+            if s.skip_existing && !paths.is_empty() && paths.iter().all(|p| p.is_file()) {
+                times.skipped += 1;
+                done.fetch_add(1, Ordering::Relaxed);
+                continue;
+            }
+            let outputs: Vec<(&'static str, &Path, OutputKind)> = flags
+                .iter()
+                .zip(paths)
+                .map(|(&(flag, kind), p)| (flag, p.as_path(), kind))
+                .collect();
+            let mut set = OutputSet::create(&outputs, &[])?;
+            let clock = Instant::now();
+            let renderer = views.renderer(camera)?;
+            let setup = secs(clock.elapsed());
+            let clock = Instant::now();
+            let (frame, redone) = renderer.render_marking(None);
+            let render = secs(clock.elapsed());
+            if renderer.redecides() {
+                *stats.redecided.get_or_insert(0) += redone.len();
+            }
+            stats.accel = renderer.accel().name();
+            stats.threads = if renderer.is_parallel() {
+                crate::par::current_num_threads()
+            } else {
+                1
+            };
+            stats.renders.push(render);
+            let clock = Instant::now();
+            let rgb = shade(
+                &frame.ids,
+                &frame.depth,
+                s.view.width,
+                s.color_mode,
+                s.variation,
+                s.seed,
+            );
+            if s.stdout_format.is_none() {
+                set.write_image("--output", s.view.width, s.view.height, &rgb)?;
+            }
+            if s.ids.is_some() {
+                set.write_npy_i32("--ids", w, h, &frame.ids)?;
+            }
+            if s.depth.is_some() {
+                set.write_npy_f32("--depth", w, h, &frame.depth)?;
+            }
+            set.commit()?;
+            views.recycle(frame);
+            let sent = match s.stdout_format {
+                Some(format) => encode_to_stdout(format, s.view.width, s.view.height, &rgb)?,
+                None => true,
+            };
+            times.each.push([setup, render, secs(clock.elapsed())]);
+            done.fetch_add(1, Ordering::Relaxed);
+            if !sent {
+                break; // the reader closed the pipe: it wants no more views
+            }
         }
-        let outputs: Vec<(&'static str, &Path, OutputKind)> = flags
-            .iter()
-            .zip(paths)
-            .map(|(&(flag, kind), p)| (flag, p.as_path(), kind))
-            .collect();
-        let mut set = OutputSet::create(&outputs, &[])?;
-        let clock = Instant::now();
-        let renderer = views.renderer(camera)?;
-        let setup = secs(clock.elapsed());
-        let clock = Instant::now();
-        let (frame, redone) = progress::with_progress(renderer.work_units(), |done| {
-            renderer.render_marking(Some(done))
-        });
-        let render = secs(clock.elapsed());
-        if renderer.redecides() {
-            *stats.redecided.get_or_insert(0) += redone.len();
-        }
-        stats.accel = renderer.accel().name();
-        stats.threads = if renderer.is_parallel() {
-            crate::par::current_num_threads()
-        } else {
-            1
-        };
-        stats.renders.push(render);
-        let clock = Instant::now();
-        let rgb = shade(
-            &frame.ids,
-            &frame.depth,
-            s.view.width,
-            s.color_mode,
-            s.variation,
-            s.seed,
-        );
-        if s.stdout_format.is_none() {
-            set.write_image("--output", s.view.width, s.view.height, &rgb)?;
-        }
-        if s.ids.is_some() {
-            set.write_npy_i32("--ids", w, h, &frame.ids)?;
-        }
-        if s.depth.is_some() {
-            set.write_npy_f32("--depth", w, h, &frame.depth)?;
-        }
-        set.commit()?;
-        views.recycle(frame);
-        let sent = match s.stdout_format {
-            Some(format) => encode_to_stdout(format, s.view.width, s.view.height, &rgb)?,
-            None => true,
-        };
-        times.each.push([setup, render, secs(clock.elapsed())]);
-        if !sent {
-            break; // the reader closed the pipe: it wants no more views
-        }
-    }
+        Ok(())
+    })?;
     stats.phases.push(("views", secs(loop_start.elapsed())));
     stats.views = Some(times);
     if let Some(p) = &s.stats {
