@@ -39,11 +39,16 @@
 //! # What is here
 //!
 //! - Scenes: [`load_scene`] (a `.sc` file, meshes included) and [`parse_scene`] (text), giving
-//!   a [`Scene`]; its parts ([`scene::Shape`], [`scene::CameraSpec`], ...) are in [`scene`].
+//!   a [`Scene`]; its parts ([`scene::Shape`], [`scene::CameraSpec`], ...) are in [`scene`],
+//!   with scenes from bytes in memory ([`scene::parse_scene_with`]) and from vertex and index
+//!   arrays ([`scene::scene_from_arrays`]).
 //! - The camera: [`Camera::for_scene`] for an image size, with [`DEFAULT_FOV`] when neither the
 //!   caller nor the scene gives a field of view.
 //! - Rendering: [`Renderer::new`] with [`Options`] ([`Kernel`], [`Accel`], [`Method`]) prepares
 //!   a scene for a camera; [`Renderer::render`] gives a [`Frame`].
+//! - Many views of one scene: [`Views::new`] once, then [`Views::render`] for each camera
+//!   ([`Camera::look_at`] makes one from a [`CameraSpec`]); [`scene::views`] reads views files
+//!   and makes orbits. Each view is bit-identical to a [`Renderer`] of its own.
 //! - Shading: [`shade`] (or [`Frame::rgb`]) by [`ColorMode`] and [`Variation`].
 //! - Output files, each written atomically: [`Frame::write_image`] (PNG or BMP by extension),
 //!   [`Frame::write_ids`] and [`Frame::write_depth`] (NumPy `.npy`), and the functions of
