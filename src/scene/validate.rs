@@ -307,6 +307,73 @@ fn shape_f32(shape: &Shape, eye: DVec3) -> Result<(), String> {
 
 fn polygon_f32<const N: usize>(v: &[DVec3; N], eye: DVec3, kw: &str) -> Result<(), String> {
     let rel = v.map(|p| p - eye);
+    if surely_in_range(v, &rel) {
+        return Ok(());
+    }
+    polygon_f32_exact(v, &rel, kw)
+}
+
+/// A cheap test that accepts only polygons [`polygon_f32_exact`] accepts: no square root or
+/// division, each of its three rules checked with a margin far larger than the rounding of
+/// either computation. It runs on every polygon for every eye (the load, and each view of a
+/// many-view run), so most polygons skip the exact test's ten square roots; anything it
+/// cannot settle goes to the exact test, so the outcome (and the first polygon named) is the
+/// exact test's alone.
+///
+/// With `u = 2^-53`, `|x|_1 >= |x|` the 1-norm, `r_k` the eye-relative vertices and `c` the
+/// plane's normal `(B - A) x (C - A)` as the exact test computes it:
+/// - distance: `|r_k|^2 <= (MAX_EYE_DISTANCE / 2)^2`, so `|r_k|`, rounded, is within the limit.
+/// - plane: the exact test's `p = |sum r_k . c/|c|| / N`. A dot product errs by at most
+///   `3u |r|_1 |c|_1` (normalising `c` first adds `2u |r| |c|` per term), so if
+///   `|sum r_k . c| >= 2 MIN_POSITIVE_F32 N |c|_1 + 16u |c|_1 sum |r_k|_1`, then the exact `p`
+///   is at least `MIN_POSITIVE_F32` and, above all, not 0: the exact test goes on to the edges
+///   and passes the plane rule.
+/// - edges: the exact sine is `|a/|a| x b/|b||`; its rounding, and that of `|a x b|` below, are
+///   at most `8u |a| |b|` absolute in `|a x b|` (each component of a cross product errs by
+///   `2u` times its terms' size; normalising adds `3u`). So `|a x b|^2 >= (2 MIN_EDGE_ANGLE +
+///   16u)^2 |a|^2 |b|^2` leaves the exact sine above `MIN_EDGE_ANGLE`.
+///
+/// Where a quantity under- or overflows, or is NaN, a comparison fails (the strict `> 0`
+/// guards reject zeros), and the exact test decides. Tested against the exact test over random
+/// polygons and eyes at every scale the limits allow, the near-plane and near-collinear cases
+/// included (`the_quick_range_test_accepts_only_what_the_exact_one_does`).
+#[inline]
+fn surely_in_range<const N: usize>(v: &[DVec3; N], rel: &[DVec3; N]) -> bool {
+    const U: f64 = f64::EPSILON / 2.0;
+    const FAR2: f64 = (MAX_EYE_DISTANCE / 2.0) * (MAX_EYE_DISTANCE / 2.0);
+    const SIN: f64 = 2.0 * MIN_EDGE_ANGLE + 16.0 * U;
+    let one = |x: DVec3| x.x.abs() + x.y.abs() + x.z.abs();
+    let c = (v[1] - v[0]).cross(v[2] - v[0]);
+    let c1 = one(c);
+    let mut dots = 0.0;
+    let mut size = 0.0;
+    let mut len2 = [0.0; N];
+    for k in 0..N {
+        len2[k] = rel[k].length_squared();
+        if !(len2[k] > 0.0 && len2[k] <= FAR2) {
+            return false;
+        }
+        dots += rel[k].dot(c);
+        size += one(rel[k]);
+    }
+    let plane = 2.0 * f64::from(f32::MIN_POSITIVE) * N as f64 * c1 + 16.0 * U * c1 * size;
+    if !(c1 > 0.0 && dots.abs() >= plane && plane > 0.0) {
+        return false;
+    }
+    (0..N).all(|i| {
+        let j = (i + 1) % N;
+        let cross2 = rel[i].cross(rel[j]).length_squared();
+        let bound = SIN * SIN * len2[i] * len2[j];
+        cross2 > 0.0 && bound > 0.0 && cross2 >= bound
+    })
+}
+
+/// The exact rules of [`polygon_f32`], in the order they are reported.
+fn polygon_f32_exact<const N: usize>(
+    v: &[DVec3; N],
+    rel: &[DVec3; N],
+    kw: &str,
+) -> Result<(), String> {
     for (k, r) in rel.iter().enumerate() {
         let d = r.length();
         if d.is_nan() || d > MAX_EYE_DISTANCE {
@@ -377,6 +444,82 @@ mod tests {
         let o = d(0.37, -1.2, 2.9);
         let q = [(0.0, 0.0), (2.0, 0.1), (1.7, 1.9), (0.2, 1.3)].map(|(x, y)| o + u * x + v * y);
         (q, w)
+    }
+
+    /// `surely_in_range` accepts only what the exact rules accept, over random triangles and
+    /// quads and eyes at scales 1e-15 to 1e15, with eyes pushed near the polygon's plane (down
+    /// to 1e-40 of its size) and near the line of an edge (where the edge subtends less than
+    /// MIN_EDGE_ANGLE), and far away (near MAX_EYE_DISTANCE). It must also accept most
+    /// ordinary polygons, or it would save nothing.
+    #[test]
+    fn the_quick_range_test_accepts_only_what_the_exact_one_does() {
+        let mut state = 0x9E37_79B9_7F4A_7C15u64;
+        let mut unit = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let (mut quick, mut ordinary, mut refused) = (0, 0, 0);
+        for case in 0..48_000 {
+            // case 5: the scales where the rounding of a plane distance, u |r|, is about the
+            // smallest f32 (1e-38), with the eye in the plane: the plane rule's margin decides
+            let scale = match case % 6 {
+                5 => 10f64.powf(unit() * 4.0 - 24.0),
+                _ => 10f64.powf(unit() * 30.0 - 15.0),
+            };
+            let centre = DVec3::new(unit(), unit(), unit()) * 10f64.powf(unit() * 10.0) * scale;
+            let mut p = || centre + (DVec3::new(unit(), unit(), unit()) * 2.0 - 1.0) * scale;
+            let tri = [p(), p(), p()];
+            let (a, b, c) = (tri[0], tri[1], tri[2]);
+            let quad = [a, b, b + (c - a) * 0.5 + (c - b) * 0.5, a + (c - b)];
+            let normal = (b - a).cross(c - a).normalize_or_zero();
+            let eye = match case % 6 {
+                // anywhere, from near to far
+                0 => centre + DVec3::new(unit(), unit(), unit()) * scale * 10f64.powf(unit() * 8.0),
+                // near the plane
+                1 => a + (b - a) * unit() * 3.0 + normal * scale * 10f64.powf(-40.0 * unit()),
+                // near the line of an edge, off the plane
+                2 => {
+                    let off = scale * 10f64.powf(-20.0 * unit());
+                    a + (b - a) * (1.5 + unit() * 1e6) + normal * off
+                }
+                // far away
+                3 => {
+                    centre
+                        + DVec3::new(unit(), 1.0, unit()) * MAX_EYE_DISTANCE * (0.4 + unit() * 0.2)
+                }
+                // in the plane, up to rounding
+                5 => a + (b - a) * (unit() * 4.0 - 2.0) + (c - a) * (unit() * 4.0 - 2.0),
+                // ordinary: a few sizes away, well off the plane
+                _ => centre + (normal * 3.0 + DVec3::new(unit(), unit(), unit())) * scale,
+            };
+            let rel = tri.map(|v| v - eye);
+            let exact = polygon_f32_exact(&tri, &rel, "triangle");
+            if surely_in_range(&tri, &rel) {
+                quick += 1;
+                assert!(
+                    exact.is_ok(),
+                    "case {case}: {tri:?} from {eye:?}: {exact:?}"
+                );
+            }
+            if case % 6 == 4 {
+                ordinary += 1;
+            }
+            refused += exact.is_err() as usize;
+            let rel = quad.map(|v| v - eye);
+            if surely_in_range(&quad, &rel) {
+                let exact = polygon_f32_exact(&quad, &rel, "quad");
+                assert!(
+                    exact.is_ok(),
+                    "case {case}: {quad:?} from {eye:?}: {exact:?}"
+                );
+            }
+        }
+        // the exact rules refused some (the near-plane and near-line eyes), and the quick test
+        // settled at least the ordinary cases
+        assert!(refused > 1_000, "{refused}");
+        assert!(quick >= ordinary, "{quick} of {ordinary}");
     }
 
     #[test]
