@@ -74,6 +74,28 @@ pub(super) fn run_stats(s: &RenderSettings, outputs: Vec<(&'static str, String)>
     }
 }
 
+/// Writes a frame's outputs that `s` asks for into the temporary files of `set`: the image
+/// (`rgb`, unless it goes to standard output), ids and depths. The targets change only when
+/// the set commits.
+pub(super) fn write_frame(
+    set: &mut OutputSet,
+    s: &RenderSettings,
+    frame: &crate::Frame<f32>,
+    rgb: &[u8],
+) -> Result<()> {
+    let (w, h) = (s.view.width as usize, s.view.height as usize);
+    if s.stdout_format.is_none() {
+        set.write_image("--output", s.view.width, s.view.height, rgb)?;
+    }
+    if s.ids.is_some() {
+        set.write_npy_i32("--ids", w, h, &frame.ids)?;
+    }
+    if s.depth.is_some() {
+        set.write_npy_f32("--depth", w, h, &frame.depth)?;
+    }
+    Ok(())
+}
+
 /// Writes an image to standard output (`-o -`); `Ok(false)` when the reader has closed the
 /// pipe (`-o - | head -c 8`): it wants no more, and as with ripgrep that is a quiet end, not an
 /// error.
@@ -137,7 +159,6 @@ pub(crate) fn render_command(s: &RenderSettings) -> Result<()> {
     stats.precision = super::precision_name(s.kernel.precision(), method);
     lap("setup", &mut stats, &mut clock);
 
-    let (w, h) = (s.view.width as usize, s.view.height as usize);
     let mut frame = None;
     for _ in 0..s.repeat {
         // the last frame's buffers are handed back for the next to fill: freed, the allocator
@@ -170,15 +191,7 @@ pub(crate) fn render_command(s: &RenderSettings) -> Result<()> {
     lap("shade", &mut stats, &mut clock);
 
     // Into the temporary files; the targets change only in `commit`, all together.
-    if s.stdout_format.is_none() {
-        set.write_image("--output", s.view.width, s.view.height, &rgb)?;
-    }
-    if s.ids.is_some() {
-        set.write_npy_i32("--ids", w, h, &frame.ids)?;
-    }
-    if s.depth.is_some() {
-        set.write_npy_f32("--depth", w, h, &frame.depth)?;
-    }
+    write_frame(&mut set, s, &frame, &rgb)?;
     lap("write", &mut stats, &mut clock);
 
     if s.stats.is_some() {

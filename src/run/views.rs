@@ -8,7 +8,7 @@
 //! range rule (`scene::validate::f32_range`, relative to that eye). A bad view stops the run
 //! with nothing written.
 
-use super::render::{check_memory, encode_to_stdout, run_stats, stats_key};
+use super::render::{check_memory, encode_to_stdout, run_stats, stats_key, write_frame};
 use crate::cli::{RenderSettings, ViewSource};
 use crate::error::{Error, Result};
 use crate::output::{self, OutputKind, OutputSet, Pattern};
@@ -215,7 +215,6 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
     stats.phases.push(("check", checked));
     let loop_start = Instant::now();
     let mut times = ViewTimes::default();
-    let (w, h) = (s.view.width as usize, s.view.height as usize);
     let flags: Vec<(&'static str, OutputKind)> = outs.iter().map(|o| (o.flag, o.kind)).collect();
     // the progress line (a terminal only, past a second) counts views
     progress::with_progress(cameras.len(), |done| -> Result<()> {
@@ -257,15 +256,7 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
                 s.variation,
                 s.seed,
             );
-            if s.stdout_format.is_none() {
-                set.write_image("--output", s.view.width, s.view.height, &rgb)?;
-            }
-            if s.ids.is_some() {
-                set.write_npy_i32("--ids", w, h, &frame.ids)?;
-            }
-            if s.depth.is_some() {
-                set.write_npy_f32("--depth", w, h, &frame.depth)?;
-            }
+            write_frame(&mut set, s, &frame, &rgb)?;
             set.commit()?;
             views.recycle(frame);
             let sent = match s.stdout_format {
