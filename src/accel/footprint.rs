@@ -3,7 +3,7 @@
 //! (`accel::reach`), and the centre rays of each tile's packets ([`PacketCones`]), which leave
 //! out of a tile's entry the packets none of whose rays the kernel can accept.
 
-use super::reach::{Region, View, sphere_near};
+use super::reach::{Region, View, plane_near, sphere_near};
 use super::tiles::{TILE_H, TILE_W};
 use crate::camera::Camera;
 use crate::kernel::polygon::PolyK;
@@ -124,8 +124,12 @@ pub(super) fn polygon_footprint<const N: usize>(
     k: &PolyK<f32, N>,
 ) -> (Option<[u16; 4]>, f64) {
     let region = screen.view.polygon_region(&k.n, k.nrm);
-    let near = screen.view.polygon_near(&region, k.nrm, k.p);
-    (screen.region_pixels(&region), near)
+    match screen.region_pixels(&region) {
+        // (a polygon on no pixel is binned nowhere: its `near` is never read, and the plane
+        // bound, which holds at any angle, spares the region's arcs)
+        None => (None, plane_near(k.p)),
+        rect => (rect, screen.view.polygon_near(&region, k.nrm, k.p)),
+    }
 }
 
 /// The rectangle and `near` of the sphere (`center`, `radius`) whose f32 constants are `oc`,

@@ -161,8 +161,8 @@ impl View {
     /// A lower bound on every distance a kernel returns on the polygon of plane normal `nrm`
     /// and plane distance `p` (f32 constants) for the rays of `region` (module comment).
     pub(crate) fn polygon_near(&self, region: &Region, nrm: [f32; 3], p: f32) -> f64 {
+        let by_plane = plane_near(p);
         let p = f64::from(p) * (1.0 - U32);
-        let by_plane = p / (1.0 + 8.0 * U32);
         let nrm = self.local(DVec3::new(nrm[0].into(), nrm[1].into(), nrm[2].into()));
         // (no ray of the region with `c32 > 0`, `den <= 0`: no hit; the plane bound stands)
         let den = region
@@ -250,6 +250,13 @@ impl View {
             + SLACK * min.abs().max(max.abs()).max_element();
         Some((min - DVec3::splat(pad), max + DVec3::splat(pad)))
     }
+}
+
+/// The plane bound of [`View::polygon_near`] alone, `p (1 - u) / (1 + 8u)` (f32 plane
+/// distance `p`): it holds for every ray, at any angle of incidence, but is weaker than the
+/// region's bound for a polygon seen obliquely.
+pub(crate) fn plane_near(p: f32) -> f64 {
+    f64::from(p) * (1.0 - U32) / (1.0 + 8.0 * U32)
 }
 
 /// A lower bound on every distance a kernel returns on the sphere of f32 constants `oc`, `r2`,

@@ -68,7 +68,7 @@ use crate::par::prelude::*;
 use crate::scene::{Scene, Shape};
 use crate::soa::{Packed, Records, SceneRecords};
 use std::cell::RefCell;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 use wide::f64x4;
 
 mod bounds;
@@ -99,8 +99,10 @@ pub struct Redecide<'s> {
     /// and quad (empty until attached; all zeros for the others). A suspect's plane is read
     /// from here, asked for by its packed index as its packet is traced, rather than computed
     /// from the scene's shape: a miss on three cache lines (and often the page table) on
-    /// 65,536 triangles.
+    /// 65,536 triangles. Kept compact: `plane_at` gives, per packed triangle and quad, the
+    /// index of its plane here (`u32::MAX`: not marked; 4 bytes a polygon rather than 40).
     planes: [Vec<verify::Plane>; 2],
+    plane_at: [Vec<u32>; 2],
     /// The oracle's f64 ray tables, padded to whole 4x2 blocks (`dir_x1` is the oracle's ray).
     tables: RayTables<f64>,
     /// What the last frame's tile path did ([`Work`]): packets walked, those that carried
@@ -226,25 +228,36 @@ impl<'s> Redecide<'s> {
     /// was packed into), and the camera's f64 ray tables.
     pub fn new(scene: &'s Scene, camera: &Camera, packed: &Packed) -> Redecide<'s> {
         let bounds = Bounds::new(camera.direction_error());
-        let mut limits = vec![[0.0, f32::INFINITY]; scene.shapes.len()];
         let s = &packed.spheres;
-        let spheres = bounds.spheres(s);
-        for (&id, l) in s.id.iter().zip(spheres) {
-            limits[id as usize] = l;
-        }
+        // each primitive's limits written at its id, on all threads (the ids of the stores
+        // are distinct: each cell is written once at most)
+        let bits = |[lo, hi]: [f32; 2]| u64::from(lo.to_bits()) | u64::from(hi.to_bits()) << 32;
+        let cells: Vec<AtomicU64> = (0..scene.shapes.len())
+            .into_par_iter()
+            .map(|_| AtomicU64::new(bits([0.0, f32::INFINITY])))
+            .collect();
+        let put = |id: f32, l: [f32; 2]| cells[id as usize].store(bits(l), Ordering::Relaxed);
+        (s.id.par_iter().zip(bounds.spheres(s))).for_each(|(&id, l)| put(id, l));
         for (ids, p) in [
             (&packed.triangles.id, &packed.triangles.p),
             (&packed.quads.id, &packed.quads.p),
         ] {
-            for (&id, &p) in ids.iter().zip(p) {
-                limits[id as usize] = bounds.polygon(p);
-            }
+            (ids.par_iter().zip(p)).for_each(|(&id, &p)| put(id, bounds.polygon(p)));
         }
+        let limits: Vec<[f32; 2]> = (cells.into_par_iter())
+            .map(|c| {
+                let c = c.into_inner();
+                [f32::from_bits(c as u32), f32::from_bits((c >> 32) as u32)]
+            })
+            .collect();
         // the least `hi` over the scene (-inf if any primitive needs `lo`): a pixel nearer
         // needs no lookup (the strip scan: the BVH and no acceleration; tiles carry each lane's)
         let safe = (packed.ids().into_iter())
-            .flat_map(|v| v.iter())
-            .map(|&id| carry(limits[id as usize]))
+            .map(|v| {
+                (v.par_iter())
+                    .map(|&id| carry(limits[id as usize]))
+                    .reduce(|| f32::INFINITY, f32::min)
+            })
             .fold(f32::INFINITY, f32::min);
         let mut sphere_at = vec![u32::MAX; if s.id.is_empty() { 0 } else { limits.len() }];
         for (i, &id) in s.id.iter().enumerate() {
@@ -262,6 +275,7 @@ impl<'s> Redecide<'s> {
             sphere_at,
             spheres,
             planes: [Vec::new(), Vec::new()],
+            plane_at: [Vec::new(), Vec::new()],
             scene,
             camera_eye: camera.eye,
             limits,
@@ -310,16 +324,17 @@ impl<'s> Redecide<'s> {
             .par_iter()
             .map(|&(kind, i)| self.plane(self.scene.shapes.get(ids[kind][i] as usize)))
             .collect();
-        // filled by the pool's threads, each first touching its own part (40 bytes a polygon:
-        // 133 MB for 3.3M triangles), rather than by one
-        self.planes = [ids[1].len(), ids[2].len()].map(|n| {
+        // filled by the pool's threads, each first touching its own part (4 bytes a polygon:
+        // 13 MB for 3.3M triangles), rather than by one
+        self.plane_at = [ids[1].len(), ids[2].len()].map(|n| {
             let mut v = Vec::with_capacity(n);
-            v.par_extend(crate::par::repeat_n(verify::Plane::default(), n));
+            v.par_extend(crate::par::repeat_n(u32::MAX, n));
             v
         });
         for (&(kind, i), plane) in polygons.iter().zip(found) {
             // (a polygon's shape is always one)
-            self.planes[kind - 1][i] = plane.unwrap_or_default();
+            self.plane_at[kind - 1][i] = self.planes[kind - 1].len() as u32;
+            self.planes[kind - 1].push(plane.unwrap_or_default());
         }
     }
 
@@ -329,8 +344,10 @@ impl<'s> Redecide<'s> {
     fn known(&self, (kind, i): (usize, usize)) -> verify::Known {
         match kind {
             0 => verify::Known::Sphere(i as u32),
-            _ if self.planes[kind - 1].is_empty() => verify::Known::Unknown,
-            _ => verify::Known::Polygon(kind as u8, i as u32),
+            _ => match self.plane_at[kind - 1].get(i) {
+                Some(&at) if at != u32::MAX => verify::Known::Polygon(kind as u8, at),
+                _ => verify::Known::Unknown,
+            },
         }
     }
 

@@ -450,8 +450,11 @@ mod tests {
         r.attach_to(tiles, &p.packed, &camera);
         let at = p.packed.triangles.id.iter().position(|&id| id == 0.0);
         let at = at.expect("the triangle, packed");
-        let kept = r.planes[0][at];
-        assert!(kept.hi2 > 0.0, "the grazing triangle is marked");
+        let Known::Polygon(1, at) = r.known((1, at)) else {
+            panic!("the grazing triangle is marked")
+        };
+        let kept = r.planes[0][at as usize];
+        assert!(kept.hi2 > 0.0, "its plane is kept");
         assert_eq!(Some(kept), r.plane(scene.shapes.get(0)));
         let walk = r.walk(&p.packed, p.tiles.as_ref(), None);
         let mut measured = 0;
@@ -468,7 +471,7 @@ mod tests {
                         t: (t64 * scale) as f32,
                         known,
                     };
-                    let found = [s(Known::Polygon(1, at as u32)); 4];
+                    let found = [s(Known::Polygon(1, at)); 4];
                     let by_id = [s(Known::Unknown); 4];
                     assert_eq!(r.verified_lanes(&walk, &found, 1), expected, "({x}, {y})");
                     assert_eq!(r.verified_lanes(&walk, &by_id, 1), expected, "({x}, {y})");
