@@ -49,7 +49,8 @@
 //! - Many views of one scene: [`Views::new`] once, then [`Views::render`] for each camera
 //!   ([`Camera::look_at`] makes one from a [`CameraSpec`]); [`scene::views`] reads views files
 //!   and makes orbits. Each view is bit-identical to a [`Renderer`] of its own.
-//! - Shading: [`shade`] (or [`Frame::rgb`]) by [`ColorMode`] and [`Variation`].
+//! - Shading: [`shade`] (or [`Frame::rgb`]) by [`ColorMode`] and [`Variation`]; what the
+//!   hits' surfaces are: [`Frame::z_depth`] and [`Frame::normals`].
 //! - Output files, each written atomically: [`Frame::write_image`] (PNG or BMP by extension),
 //!   [`Frame::write_ids`] and [`Frame::write_depth`] (NumPy `.npy`), and the functions of
 //!   [`output`] they call.
@@ -117,6 +118,7 @@ pub(crate) mod shade;
 pub(crate) mod soa;
 #[cfg(feature = "cli")]
 pub(crate) mod stats;
+pub(crate) mod surface;
 pub(crate) mod words;
 
 pub use accel::Accel;

@@ -1,18 +1,18 @@
 //! Rendering and results: views rendered from a scene's prepared views into `lanecast.Render`
-//! (ids, depth, z-depth as numpy arrays), and `shade`.
+//! (ids, depth, and on request z-depth and normals, as numpy arrays), and `shade`.
 
 use crate::errors::{py_err, scene_error_class, value_error};
 use crate::scene::Prepared;
 use crate::threads::run;
 use lanecast::{ColorMode, Variation};
-use numpy::ndarray::{Array2, Array3};
+use numpy::ndarray::{Array2, Array3, Array4};
 use numpy::{IntoPyArray, PyReadonlyArray1};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
 /// A render's buffers: `ids` and `depth`, (H, W) for one view or (V, H, W) for a batch, and
-/// `zdepth` when the render asked for it.
+/// `zdepth` and `normals` when the render asked for them.
 #[pyclass(frozen, module = "lanecast._lanecast", name = "Render")]
 pub(crate) struct Render {
     /// Primitive id per pixel, int32, -1 for background; row 0 at the top.
@@ -22,6 +22,15 @@ pub(crate) struct Render {
     #[pyo3(get)]
     depth: Py<PyAny>,
     z: Option<Py<PyAny>>,
+    n: Option<Py<PyAny>>,
+}
+
+/// What a render computes beside ids and depth (the library's `Frame::z_depth`,
+/// `Frame::normals`).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Extras {
+    pub(crate) zdepth: bool,
+    pub(crate) normals: bool,
 }
 
 #[pymethods]
@@ -35,6 +44,19 @@ impl Render {
             Some(z) => Ok(z.clone_ref(py)),
             None => Err(pyo3::exceptions::PyAttributeError::new_err(
                 "zdepth: render with zdepth=True (depth is the distance along the ray)",
+            )),
+        }
+    }
+
+    /// Unit surface normal of each pixel's hit, world coordinates, facing the camera, float32
+    /// (H, W, 3) (or (V, H, W, 3)); (0, 0, 0) for background. Only when rendered with
+    /// `normals=True`.
+    #[getter]
+    fn normals(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
+        match &self.n {
+            Some(n) => Ok(n.clone_ref(py)),
+            None => Err(pyo3::exceptions::PyAttributeError::new_err(
+                "normals: render with normals=True",
             )),
         }
     }
@@ -65,38 +87,21 @@ impl Render {
     }
 }
 
-/// Depth along the optical axis: each pixel's distance along its unit ray times the cosine
-/// between that ray (the camera's f64 direction tables) and the forward axis. Background stays
-/// +inf.
-fn z_depth(cam: &lanecast::Camera, depth: &[f32]) -> Vec<f32> {
-    let tables = cam.tables::<f64>(1, 1);
-    let f = cam.f.to_array();
-    let w = cam.width as usize;
-    depth
-        .iter()
-        .enumerate()
-        .map(|(i, &t)| {
-            let d = tables.dir_x1(i % w, i / w);
-            (t as f64 * (d[0] * f[0] + d[1] * f[1] + d[2] * f[2])) as f32
-        })
-        .collect()
-}
-
 /// One view from `prepared` through `cam`, the GIL released on `threads` threads: the
-/// library's ids and depth buffers moved into numpy without a copy, and the optical-axis
-/// depth when `zdepth`.
+/// library's ids and depth buffers moved into numpy without a copy, and the extras asked for.
 pub(crate) fn one(
     py: Python<'_>,
     prepared: &Prepared,
     cam: &lanecast::Camera,
     threads: Option<usize>,
-    zdepth: bool,
+    extras: Extras,
 ) -> PyResult<Render> {
-    let (frame, z) = run(py, threads, || {
+    let (frame, z, n) = run(py, threads, || {
         prepared.with_dependent(|_, views| {
             let frame = views.render(cam)?;
-            let z = zdepth.then(|| z_depth(cam, &frame.depth));
-            Ok::<_, lanecast::Error>((frame, z))
+            let z = extras.zdepth.then(|| frame.z_depth(cam));
+            let n = extras.normals.then(|| frame.normals(views.scene(), cam));
+            Ok::<_, lanecast::Error>((frame, z, n))
         })
     })?
     .map_err(|e| py_err(py, e))?;
@@ -107,10 +112,15 @@ pub(crate) fn one(
         let z = Array2::from_shape_vec((h, w), z).expect("h * w");
         z.into_pyarray(py).into_any().unbind()
     });
+    let n = n.map(|n| {
+        let n = Array3::from_shape_vec((h, w, 3), n.into_flattened()).expect("h * w * 3");
+        n.into_pyarray(py).into_any().unbind()
+    });
     Ok(Render {
         ids: ids.into_pyarray(py).into_any().unbind(),
         depth: depth.into_pyarray(py).into_any().unbind(),
         z,
+        n,
     })
 }
 
@@ -123,27 +133,32 @@ pub(crate) fn views(
     cams: &[lanecast::Camera],
     (w, h): (usize, usize),
     threads: Option<usize>,
-    zdepth: bool,
+    extras: Extras,
 ) -> PyResult<Render> {
     let n = w * h;
+    let room = |on: bool, per: usize| if on { cams.len() * per } else { 0 };
     let out = run(py, threads, || {
         prepared.with_dependent(|_, views| {
             let mut ids = Vec::with_capacity(cams.len() * n);
             let mut depth = Vec::with_capacity(cams.len() * n);
-            let mut zd = Vec::with_capacity(if zdepth { cams.len() * n } else { 0 });
+            let mut zd = Vec::with_capacity(room(extras.zdepth, n));
+            let mut nd: Vec<[f32; 3]> = Vec::with_capacity(room(extras.normals, n));
             for (v, cam) in cams.iter().enumerate() {
                 let frame = views.render(cam).map_err(|e| (v, e))?;
                 ids.extend_from_slice(&frame.ids);
                 depth.extend_from_slice(&frame.depth);
-                if zdepth {
-                    zd.extend(z_depth(cam, &frame.depth));
+                if extras.zdepth {
+                    zd.extend(frame.z_depth(cam));
+                }
+                if extras.normals {
+                    nd.extend(frame.normals(views.scene(), cam));
                 }
                 views.recycle(frame);
             }
-            Ok::<_, (usize, lanecast::Error)>((ids, depth, zd))
+            Ok::<_, (usize, lanecast::Error)>((ids, depth, zd, nd))
         })
     })?;
-    let (ids, depth, zd) = out.map_err(|(v, e)| {
+    let (ids, depth, zd, nd) = out.map_err(|(v, e)| {
         let err = py_err(py, e);
         let msg = format!("cameras[{v}]: {}", err.value(py));
         match err.is_instance_of::<PyValueError>(py) {
@@ -154,11 +169,18 @@ pub(crate) fn views(
     let v = cams.len();
     let arr = |x| Array3::from_shape_vec((v, h, w), x).expect("v * h * w");
     let ids = Array3::from_shape_vec((v, h, w), ids).expect("v * h * w");
-    let z = zdepth.then(|| arr(zd).into_pyarray(py).into_any().unbind());
+    let z = extras
+        .zdepth
+        .then(|| arr(zd).into_pyarray(py).into_any().unbind());
+    let normals = extras.normals.then(|| {
+        let nd = Array4::from_shape_vec((v, h, w, 3), nd.into_flattened()).expect("v*h*w*3");
+        nd.into_pyarray(py).into_any().unbind()
+    });
     Ok(Render {
         ids: ids.into_pyarray(py).into_any().unbind(),
         depth: arr(depth).into_pyarray(py).into_any().unbind(),
         z,
+        n: normals,
     })
 }
 

@@ -5,7 +5,7 @@ use crate::arrays::{float_rows, index_rows};
 use crate::camera::{PyCamera, camera_arg, cameras_arg};
 use crate::errors::{py_err, value_error};
 use crate::pickle::{self, SceneState};
-use crate::render::{self, Render};
+use crate::render::{self, Extras, Render};
 use crate::threads::run;
 use lanecast::{CameraSpec, Method, Options, Scene, Views};
 use pyo3::exceptions::PyRuntimeError;
@@ -164,13 +164,13 @@ impl PyScene {
     }
 
     /// scene.render(camera=None, width=None, height=None, precision="auto", threads=None,
-    /// zdepth=False): one view, as a `Render` with `ids` (H, W) int32 (-1: background) and
-    /// `depth` (H, W) float32 (distance along the unit ray, +inf: background), and `zdepth`
-    /// (distance along the optical axis) when asked for. `camera` None is the scene's own;
+    /// zdepth=False, normals=False): one view, as a `Render` with `ids` (H, W) int32 (-1:
+    /// background) and `depth` (H, W) float32 (distance along the unit ray, +inf: background),
+    /// `zdepth` (distance along the optical axis) and `normals` (H, W, 3) when asked for. `camera` None is the scene's own;
     /// the size is the camera's (from intrinsics), else 640x480. The ids and depth buffers
     /// are the library's, moved into numpy without a copy. The GIL is released while the
     /// view renders, on `threads` threads (None: all cores).
-    #[pyo3(signature = (camera = None, width = None, height = None, precision = "auto", threads = None, zdepth = false))]
+    #[pyo3(signature = (camera = None, width = None, height = None, precision = "auto", threads = None, zdepth = false, normals = false))]
     #[allow(clippy::too_many_arguments)]
     fn render(
         &self,
@@ -181,18 +181,19 @@ impl PyScene {
         precision: &str,
         threads: Option<usize>,
         zdepth: bool,
+        normals: bool,
     ) -> PyResult<Render> {
         let cam = camera_arg(&self.scene, camera)?.resolve(width, height)?;
         let prepared = self.prepared(precision_index(precision)?)?;
-        render::one(py, &prepared, &cam, threads, zdepth)
+        render::one(py, &prepared, &cam, threads, Extras { zdepth, normals })
     }
 
     /// scene.render_views(cameras, width=None, height=None, precision="auto", threads=None,
-    /// zdepth=False): many views from the scene's prepared views, as one `Render` whose arrays
+    /// zdepth=False, normals=False): many views from the scene's prepared views, as one `Render` whose arrays
     /// are stacked (V, H, W), view v from cameras[v]; every camera must give the same size.
     /// Each view is rendered by the library into its recycled frame and copied into the
     /// stacked arrays. The GIL is released for the whole batch.
-    #[pyo3(signature = (cameras, width = None, height = None, precision = "auto", threads = None, zdepth = false))]
+    #[pyo3(signature = (cameras, width = None, height = None, precision = "auto", threads = None, zdepth = false, normals = false))]
     #[allow(clippy::too_many_arguments)]
     fn render_views(
         &self,
@@ -203,6 +204,7 @@ impl PyScene {
         precision: &str,
         threads: Option<usize>,
         zdepth: bool,
+        normals: bool,
     ) -> PyResult<Render> {
         let cams = cameras_arg(cameras, width, height)?;
         let (w, h) = match cams.first() {
@@ -213,7 +215,14 @@ impl PyScene {
             ),
         };
         let prepared = self.prepared(precision_index(precision)?)?;
-        render::views(py, &prepared, &cams, (w, h), threads, zdepth)
+        render::views(
+            py,
+            &prepared,
+            &cams,
+            (w, h),
+            threads,
+            Extras { zdepth, normals },
+        )
     }
 
     /// The scene by value, compactly, for pickling: (version, source, camera, fov or None,
