@@ -79,18 +79,21 @@ impl<const N: usize> PolyK<f64, N> {
     /// (seen edge-on, it covers no pixel) or a constant is not finite.
     pub fn new(v: &[DVec3; N], raw_normal: DVec3, eye: DVec3) -> Option<PolyK<f64, N>> {
         let rel = v.map(|p| p - eye);
+        // (every length is taken once: the operations are glam's `length`, `normalize` and
+        // `try_normalize`, `x * (1 / |x|)`, so the constants are theirs bit for bit)
+        let len = rel.map(|r| r.length());
+        let raw_len = raw_normal.length();
         let facing = rel[0].dot(raw_normal);
         // Edge-on up to rounding (the sine of the angle between the eye's view of A and the
         // plane below EDGE_ON_SINE): no pixel's worth of area, and edge planes that f32 rounding
         // can turn into a wedge over empty pixels (found by the accuracy lab on an icosphere
         // whose vertices were snapped onto pixel rays: sine 5.6e-17, false hits at t = 2.5e-8).
-        if !facing.is_finite()
-            || facing.abs() <= EDGE_ON_SINE * rel[0].length() * raw_normal.length()
-        {
+        if !facing.is_finite() || facing.abs() <= EDGE_ON_SINE * len[0] * raw_len {
             return None;
         }
         let s = facing.signum();
-        let (nrm, p) = Self::oriented_plane(&rel, raw_normal, s);
+        let nrm = raw_normal * (1.0 / raw_len) * s;
+        let p = Self::plane_distance(&rel, nrm);
         // An edge subtending less than `limits::MIN_EDGE_ANGLE` from the eye has no reliable
         // plane: its cross product is rounding noise (or zero), and a wrong or zero normal
         // passes every ray on one side (an endless wedge). Such a polygon is never drawn.
@@ -98,12 +101,17 @@ impl<const N: usize> PolyK<f64, N> {
         // safe for any caller of the library.
         let mut n = [DVec3::ZERO; N];
         for (i, e) in n.iter_mut().enumerate() {
-            let (a, b) = (rel[i], rel[(i + 1) % N]);
-            let c = a.cross(b);
-            if c.length() < MIN_EDGE_ANGLE * a.length() * b.length() {
+            let c = rel[i].cross(rel[(i + 1) % N]);
+            let c_len = c.length();
+            if c_len < MIN_EDGE_ANGLE * len[i] * len[(i + 1) % N] {
                 return None;
             }
-            *e = c.try_normalize()? * s; // None for NaN too
+            let rcp = 1.0 / c_len;
+            // (NaN too)
+            if !(rcp.is_finite() && rcp > 0.0) {
+                return None;
+            }
+            *e = c * rcp * s;
         }
         let finite = p.is_finite() && nrm.is_finite();
         (p > 0.0 && finite).then(|| PolyK {
@@ -118,8 +126,13 @@ impl<const N: usize> PolyK<f64, N> {
     #[inline]
     fn oriented_plane(rel: &[DVec3; N], raw_normal: DVec3, s: f64) -> (DVec3, f64) {
         let nrm = raw_normal.normalize() * s;
-        let p = rel.iter().map(|r| r.dot(nrm)).sum::<f64>() / N as f64;
-        (nrm, p)
+        (nrm, Self::plane_distance(rel, nrm))
+    }
+
+    /// The plane's distance from the eye, the mean of the vertices' along the unit normal.
+    #[inline]
+    fn plane_distance(rel: &[DVec3; N], nrm: DVec3) -> f64 {
+        rel.iter().map(|r| r.dot(nrm)).sum::<f64>() / N as f64
     }
 
     /// [`PolyK::new`]'s `nrm` and `p` alone, bit for bit (the same operations), without the

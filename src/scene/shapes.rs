@@ -20,13 +20,48 @@ use std::ops::Range;
 /// into `vertices`. Degenerate faces are kept, so the ids of the others do not shift.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Mesh {
-    /// Every vertex of the OBJ file, in file order.
+    /// Every vertex of the mesh file, in file order (in a scene's [`Shapes`], in the order the
+    /// faces first use them: [`Mesh::localize`]).
     pub vertices: Vec<DVec3>,
     /// Each face's three vertex indices (0-based, in range).
     pub faces: Vec<[u32; 3]>,
 }
 
 impl Mesh {
+    /// Renumbers the vertices in the order the faces first use them (vertices no face uses
+    /// keep their order, after the rest), the faces rewritten to match: every face keeps its
+    /// three points, in its order. Faces read one after another then read vertices that lie
+    /// together in memory, as each view's setup does twice per face (the f32 range check and
+    /// the constants). A mesh already in that order is left as it is.
+    pub fn localize(&mut self) {
+        const NONE: u32 = u32::MAX;
+        let mut map = vec![NONE; self.vertices.len()];
+        let mut next = 0u32;
+        for f in &self.faces {
+            for &v in f {
+                if map[v as usize] == NONE {
+                    map[v as usize] = next;
+                    next += 1;
+                }
+            }
+        }
+        if map.iter().enumerate().all(|(i, &m)| m == i as u32) {
+            return;
+        }
+        for m in map.iter_mut().filter(|m| **m == NONE) {
+            *m = next;
+            next += 1;
+        }
+        let mut vertices = vec![DVec3::ZERO; self.vertices.len()];
+        for (v, &m) in self.vertices.iter().zip(&map) {
+            vertices[m as usize] = *v;
+        }
+        self.vertices = vertices;
+        for f in &mut self.faces {
+            *f = f.map(|v| map[v as usize]);
+        }
+    }
+
     /// Face `f`'s vertices.
     #[inline]
     pub fn triangle(&self, f: usize) -> [DVec3; 3] {
@@ -114,11 +149,13 @@ impl Shapes {
         }
     }
 
-    /// Appends a mesh's faces, all on `line`.
-    pub fn push_mesh(&mut self, mesh: Mesh, line: usize) {
+    /// Appends a mesh's faces, all on `line`, its vertices renumbered in the order the faces
+    /// use them ([`Mesh::localize`]).
+    pub fn push_mesh(&mut self, mut mesh: Mesh, line: usize) {
         if mesh.is_empty() {
             return;
         }
+        mesh.localize();
         self.runs.push(Run {
             first: self.len,
             src: Src::Mesh(self.meshes.len()),
@@ -362,6 +399,47 @@ impl ExactSizeIterator for Iter<'_> {}
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Localizing renumbers the vertices in first-use order, unused ones last in their old
+    /// order, and keeps every face's points: over random meshes, faces read the same
+    /// triangles, the first uses run 0, 1, 2, ..., and a second pass changes nothing.
+    #[test]
+    fn localize_keeps_every_face_and_numbers_vertices_by_first_use() {
+        let mut state = 0x9E37_79B9_7F4A_7C15u64;
+        let mut next = |n: u32| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state % u64::from(n)) as u32
+        };
+        for case in 0..50 {
+            let nv = 1 + next(200);
+            let vertices: Vec<DVec3> = (0..nv)
+                .map(|i| DVec3::new(f64::from(i), f64::from(next(1000)), f64::from(case)))
+                .collect();
+            let faces: Vec<[u32; 3]> = (0..next(300))
+                .map(|_| [next(nv), next(nv), next(nv)])
+                .collect();
+            let mut mesh = Mesh { vertices, faces };
+            let before = mesh.clone();
+            mesh.localize();
+            assert_eq!(mesh.vertices.len(), before.vertices.len(), "case {case}");
+            for f in 0..mesh.len() {
+                assert_eq!(mesh.triangle(f), before.triangle(f), "case {case} face {f}");
+            }
+            let mut seen = 0;
+            for &v in mesh.faces.iter().flatten() {
+                assert!(v <= seen, "case {case}: vertex {v} before {seen}");
+                seen = seen.max(v + 1);
+            }
+            // the unused vertices, last, in their old order (their x is their old index)
+            let unused = &mesh.vertices[seen as usize..];
+            assert!(unused.windows(2).all(|w| w[0].x < w[1].x), "case {case}");
+            let once = mesh.clone();
+            mesh.localize();
+            assert_eq!(mesh, once, "case {case}: a fixed point");
+        }
+    }
 
     fn sphere(r: f64) -> Shape {
         Shape::Sphere {
