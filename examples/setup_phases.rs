@@ -1,0 +1,77 @@
+//! Where a view's time goes in a many-view run: for each camera of an orbit about the scene's
+//! camera (`scene::views::orbit`, as `--orbit N`), the best of `REPEAT` timings of each stage
+//! of the per-view work, run alone, in the current rayon pool (`RAYON_NUM_THREADS`):
+//!
+//! - `check`: the f32 range check from the view's eye (`validate::f32_range_from`);
+//! - `pack`: the eye-relative f32 stores (`Packed::from_scene`);
+//! - `setup f32`, `setup auto`: the whole setup, `Renderer::new`, with `--precision f32` (the
+//!   stores, then every footprint, the tiles' lists and the screen order: `setup f32 - pack`
+//!   is the tiles' part) and `auto` (its extra: each primitive's trusted distances and the
+//!   tiles' marks);
+//! - `render`: `Renderer::render` of the auto renderer.
+//!
+//! Usage, printing the median over the views of each stage, ms:
+//!
+//!     RAYON_NUM_THREADS=2 cargo run --release --example setup_phases -- SCENE WxH VIEWS [REPEAT]
+use lanecast::experimental::scene::validate::f32_range_from;
+use lanecast::experimental::soa::Packed;
+use lanecast::scene::views::orbit;
+use lanecast::{Camera, Method, Options, Renderer, load_scene};
+use std::time::Instant;
+
+fn best<T>(repeat: usize, mut f: impl FnMut() -> T) -> f64 {
+    let mut t = f64::INFINITY;
+    for _ in 0..repeat {
+        let s = Instant::now();
+        let r = f();
+        t = t.min(s.elapsed().as_secs_f64());
+        drop(r);
+    }
+    t * 1e3
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let usage = "usage: setup_phases SCENE WxH VIEWS [REPEAT]";
+    let [scene, size, views, rest @ ..] = args.as_slice() else {
+        return Err(usage.into());
+    };
+    let (w, h) = size.split_once('x').ok_or(usage)?;
+    let (w, h): (u32, u32) = (w.parse()?, h.parse()?);
+    let views: usize = views.parse()?;
+    let repeat: usize = rest.first().map_or(Ok(3), |r| r.parse())?;
+    let scene = load_scene(std::path::Path::new(scene))?;
+    let options = |method| Options {
+        method,
+        ..Options::default()
+    };
+    let names = ["check", "pack", "setup f32", "setup auto", "render"];
+    let mut times: Vec<Vec<f64>> = vec![Vec::new(); names.len()];
+    for spec in orbit(&scene.camera, views) {
+        let camera = Camera::look_at(&spec, w, h)?;
+        let eye = camera.eye;
+        times[0].push(best(repeat, || f32_range_from(&scene, eye)));
+        times[1].push(best(repeat, || Packed::from_scene(&scene, eye)));
+        let f32_ = options(Method::Default);
+        times[2].push(best(repeat, || Renderer::new(&scene, &camera, &f32_)));
+        let auto = options(Method::Auto);
+        times[3].push(best(repeat, || Renderer::new(&scene, &camera, &auto)));
+        let r = Renderer::new(&scene, &camera, &auto)?;
+        times[4].push(best(repeat, || r.render()));
+    }
+    println!(
+        "{} primitives, {w}x{h}, {views} views, RAYON_NUM_THREADS={}; median over the views \
+         of the best of {repeat}, ms:",
+        scene.shapes.len(),
+        std::env::var("RAYON_NUM_THREADS").unwrap_or_else(|_| "(all cores)".into())
+    );
+    for (name, t) in names.iter().zip(times) {
+        println!("  {name:<11} {:8.1}", median(t));
+    }
+    Ok(())
+}
