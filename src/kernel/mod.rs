@@ -17,6 +17,7 @@ pub mod packet;
 pub mod polygon;
 pub mod scalar;
 pub mod sphere;
+pub mod triangle_setup;
 
 pub use lanes::HitLanes;
 

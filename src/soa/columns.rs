@@ -5,6 +5,7 @@
 use super::{Group, Order, Prepared, gather};
 use crate::kernel::polygon::{PolyK, QuadK, TriangleK};
 use crate::kernel::sphere::SphereK;
+use crate::kernel::triangle_setup::triangles_x4;
 use crate::par::prelude::*;
 use crate::scene::{Scene, Shape};
 use glam::DVec3;
@@ -209,6 +210,44 @@ impl<const N: usize> Polygons<N> {
     }
 }
 
+/// Up to four triangles waiting for [`triangles_x4`], with their ids.
+#[derive(Default)]
+struct Four {
+    v: [[DVec3; 3]; 4],
+    id: [f32; 4],
+    n: usize,
+}
+
+impl Four {
+    /// Adds one triangle; with four, their constants go to `store`.
+    #[inline]
+    fn add(&mut self, v: [DVec3; 3], id: f32, store: &mut Polygons<3>, eye: DVec3) {
+        (self.v[self.n], self.id[self.n]) = (v, id);
+        self.n += 1;
+        if self.n == 4 {
+            self.flush(store, eye);
+        }
+    }
+
+    /// The constants of the triangles waiting, in their order, to `store`.
+    fn flush(&mut self, store: &mut Polygons<3>, eye: DVec3) {
+        if self.n == 0 {
+            return;
+        }
+        // (unused lanes repeat the first triangle, and are dropped)
+        for k in self.n..4 {
+            self.v[k] = self.v[0];
+        }
+        let ks = triangles_x4(&self.v, eye);
+        for (k, id) in ks.iter().zip(self.id).take(self.n) {
+            if let Some(k) = k {
+                store.push(&k.cast(), id);
+            }
+        }
+        self.n = 0;
+    }
+}
+
 /// All primitives as f32 structure-of-arrays stores, one per type.
 #[derive(Debug, Clone, Default)]
 pub struct Packed {
@@ -249,9 +288,17 @@ impl Packed {
             let parts: Vec<Packed> = (scene.shapes.par_chunks(ids, CHUNK))
                 .map(|(first, shapes)| {
                     let mut part = Packed::default();
+                    // triangles four at a time (`triangles_x4`: the same constants), the
+                    // others one by one; each store keeps its shapes' order
+                    let mut four = Four::default();
                     for (j, shape) in shapes.enumerate() {
-                        part.push(shape, (first + j) as f32, eye);
+                        let id = (first + j) as f32;
+                        match shape {
+                            Shape::Triangle(v) => four.add(v, id, &mut part.triangles, eye),
+                            other => part.push(other, id, eye),
+                        }
                     }
+                    four.flush(&mut part.triangles, eye);
                     part
                 })
                 .collect();
@@ -265,7 +312,7 @@ impl Packed {
     }
 
     /// Appends `shape`'s constants seen from `eye` with id `id`, unless it is a polygon seen
-    /// edge-on.
+    /// edge-on (or, as the kernels' constructors refuse, has an edge too short to resolve).
     #[inline]
     fn push(&mut self, shape: Shape, id: f32, eye: DVec3) {
         match shape {
