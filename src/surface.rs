@@ -12,8 +12,8 @@
 //!   - a triangle: `(B - A) x (C - A)`, a quad: `(C - A) x (D - B)` (its diagonals), the
 //!     plane normals the kernels use (`kernel::polygon`), normalised; exact to f64 rounding
 //!     whatever the distance, since only the vertices enter;
-//!   - a sphere: `(P - C) / r` at the hit `P = eye + t d`, turned to face the eye when the eye
-//!     is inside. `P` carries the f32 depth's error, at most `48u / cos(theta)` relative
+//!   - a sphere: `P - C` normalised, at the hit `P = eye + t d`, turned to face the eye when
+//!     the eye is inside. `P` carries the f32 depth's error, at most `48u / cos(theta)` relative
 //!     (u = 2^-24, theta the angle of incidence; the bound tests/agreement.rs holds the kernels
 //!     to), along the ray; that turns the normal by at most `48u t / (r cos(theta))` radians:
 //!     about 5e-5 face-on on a sphere 16 radii away, more towards its silhouette, where the
@@ -22,7 +22,8 @@
 //!
 //! Known to fail: none beyond the precision above; a pixel's normal is that of the primitive
 //! the render reports, so where two primitives tie the id's primitive gives it.
-//! Tested in `tests/surface.rs` against the f64 oracle's own hits over random cameras.
+//! Tested in `tests/surface.rs` against the exact hit along the same f64 ray, over random
+//! scenes, cameras, scales and eyes inside spheres.
 
 use crate::Frame;
 use crate::camera::Camera;
