@@ -119,6 +119,8 @@ pub(crate) mod soa;
 #[cfg(feature = "cli")]
 pub(crate) mod stats;
 pub(crate) mod surface;
+#[cfg(test)]
+mod test_rng;
 pub(crate) mod words;
 
 pub use accel::Accel;

@@ -351,13 +351,8 @@ mod tests {
     /// either side and far from the origin.
     #[test]
     fn plane_alone_is_the_constants_plane() {
-        let mut x = 0x9E37_79B9_7F4A_7C15u64;
-        let mut unit = || {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            (x >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
+        let mut rng = crate::test_rng::Rng(0x9E37_79B9_7F4A_7C15);
+        let mut unit = || rng.unit() - 0.5;
         let mut checked = 0;
         for _ in 0..500 {
             let base = DVec3::new(unit(), unit(), unit()) * 1e4;

@@ -240,13 +240,8 @@ mod tests {
             SphereK::new(DVec3::new(0.0, 0.0, 0.1), 1.0, DVec3::ZERO).cast::<f32>(),
             SphereK::new(DVec3::new(2e4, 1e4, -3e4), 5.0, DVec3::ZERO).cast::<f32>(),
         ];
-        let mut seed = 0x9E37_79B9_7F4A_7C15u64;
-        let mut rnd = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0
-        };
+        let mut rng = crate::test_rng::Rng(0x9E37_79B9_7F4A_7C15);
+        let mut rnd = || rng.range(-1.0, 1.0) as f32;
         for s in &spheres {
             for _ in 0..2000 {
                 let toward = [s.oc[0] + rnd(), s.oc[1] + rnd(), s.oc[2] + rnd()];

@@ -132,13 +132,8 @@ mod tests {
     /// coordinates: every lane is the scalar constants, bit for bit, or `None` with them.
     #[test]
     fn the_four_lanes_are_the_scalar_constants_bit_for_bit() {
-        let mut state = 0x2545_F491_4F6C_DD1Du64;
-        let mut unit = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = crate::test_rng::Rng(0x2545_F491_4F6C_DD1D);
+        let mut unit = || rng.unit();
         let point = |scale: f64, u: &mut dyn FnMut() -> f64| {
             DVec3::new(u() - 0.5, u() - 0.5, u() - 0.5) * scale
         };

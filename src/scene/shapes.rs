@@ -405,13 +405,8 @@ mod tests {
     /// triangles, the first uses run 0, 1, 2, ..., and a second pass changes nothing.
     #[test]
     fn localize_keeps_every_face_and_numbers_vertices_by_first_use() {
-        let mut state = 0x9E37_79B9_7F4A_7C15u64;
-        let mut next = |n: u32| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state % u64::from(n)) as u32
-        };
+        let mut rng = crate::test_rng::Rng(0x9E37_79B9_7F4A_7C15);
+        let mut next = |n: u32| rng.below(n);
         for case in 0..50 {
             let nv = 1 + next(200);
             let vertices: Vec<DVec3> = (0..nv)

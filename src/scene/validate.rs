@@ -453,13 +453,8 @@ mod tests {
     /// ordinary polygons, or it would save nothing.
     #[test]
     fn the_quick_range_test_accepts_only_what_the_exact_one_does() {
-        let mut state = 0x9E37_79B9_7F4A_7C15u64;
-        let mut unit = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = crate::test_rng::Rng(0x9E37_79B9_7F4A_7C15);
+        let mut unit = move || rng.unit();
         let (mut quick, mut ordinary, mut refused) = (0, 0, 0);
         for case in 0..48_000 {
             // case 5: the scales where the rounding of a plane distance, u |r|, is about the

@@ -188,13 +188,8 @@ mod tests {
     fn an_orbit_keeps_distance_height_and_look() {
         // random cameras over scales 1e-6..1e6 and any up: the orbit keeps the eye's distance
         // from the axis and height along it (to rounding), and returns to the start
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut rnd = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut rng = crate::test_rng::Rng(0x2545_F491_4F6C_DD1D);
+        let mut rnd = || rng.range(-1.0, 1.0);
         for _ in 0..200 {
             let scale = 10f64.powf(rnd() * 6.0);
             let v = |r: &mut dyn FnMut() -> f64| DVec3::new(r(), r(), r());

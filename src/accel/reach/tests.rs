@@ -10,36 +10,7 @@ use crate::kernel::polygon::{PolyK, polygon_x1};
 use crate::kernel::sphere::{SphereK, sphere_x1};
 use crate::real::{V3, dot, v3};
 use crate::scene::{CameraSpec, Scene, Shape};
-
-/// xorshift64*, uniform in [0, 1).
-struct Rng(u64);
-
-impl Rng {
-    fn unit(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, a: f64, b: f64) -> f64 {
-        a + (b - a) * self.unit()
-    }
-    /// 10^x, x uniform in [a, b).
-    fn log(&mut self, a: f64, b: f64) -> f64 {
-        10f64.powf(self.range(a, b))
-    }
-    fn direction(&mut self) -> DVec3 {
-        loop {
-            let v = DVec3::new(self.unit(), self.unit(), self.unit()) * 2.0 - 1.0;
-            if (1e-3..=1.0).contains(&v.length_squared()) {
-                return v.normalize();
-            }
-        }
-    }
-    fn below(&mut self, n: u32) -> u32 {
-        ((self.unit() * n as f64) as u32).min(n - 1)
-    }
-}
+use crate::test_rng::Rng;
 
 /// A random camera at `eye` looking at `look`: fov log-uniform in [1e-4, 179.9] degrees,
 /// width and height from 1 to `limits::MAX_SIDE` (within `limits::MAX_PIXELS`), up vector

@@ -8,21 +8,8 @@ use crate::kernel::sphere::sphere_x8;
 use crate::real::V3;
 use crate::scene::{CameraSpec, Scene, Shape};
 use crate::soa::Prepared;
+use crate::test_rng::Rng;
 use glam::DVec3;
-
-/// xorshift64*, uniform in [0, 1).
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn point(&mut self, half: f64) -> DVec3 {
-        DVec3::new(self.next(), self.next(), self.next()) * 2.0 * half - half
-    }
-}
 
 /// Primitives of every kind and size around the eye: tiny and large, in front, crossing
 /// the eye's plane, behind, and the eye inside one sphere.
@@ -35,7 +22,7 @@ fn scene(seed: u64, eye: DVec3, look: DVec3, fov: f64) -> Scene {
         match i % 3 {
             0 => shapes.push(Shape::Sphere {
                 center: c,
-                radius: size * (0.2 + rng.next()),
+                radius: size * (0.2 + rng.unit()),
             }),
             1 => shapes.push(Shape::Triangle([
                 c,
