@@ -121,14 +121,6 @@ impl<const N: usize> PolyK<f64, N> {
         })
     }
 
-    /// The unit plane normal oriented by `s` (the side the eye is on) and the plane distance,
-    /// from the eye-relative vertices `rel`: [`PolyK::new`]'s `nrm` and `p`.
-    #[inline]
-    fn oriented_plane(rel: &[DVec3; N], raw_normal: DVec3, s: f64) -> (DVec3, f64) {
-        let nrm = raw_normal.normalize() * s;
-        (nrm, Self::plane_distance(rel, nrm))
-    }
-
     /// The plane's distance from the eye, the mean of the vertices' along the unit normal.
     #[inline]
     fn plane_distance(rel: &[DVec3; N], nrm: DVec3) -> f64 {
@@ -141,8 +133,8 @@ impl<const N: usize> PolyK<f64, N> {
     pub fn plane(v: &[DVec3; N], raw_normal: DVec3, eye: DVec3) -> (V3<f64>, f64) {
         let rel = v.map(|p| p - eye);
         let s = rel[0].dot(raw_normal).signum();
-        let (nrm, p) = Self::oriented_plane(&rel, raw_normal, s);
-        (v3(nrm), p)
+        let nrm = raw_normal.normalize() * s;
+        (v3(nrm), Self::plane_distance(&rel, nrm))
     }
 
     /// The same constants rounded to `T`.

@@ -68,12 +68,10 @@ impl V4 {
         self.dot(self).sqrt()
     }
 
-    fn lane(&self, k: usize) -> [f64; 3] {
-        [
-            self.x.to_array()[k],
-            self.y.to_array()[k],
-            self.z.to_array()[k],
-        ]
+    /// The four lanes as vectors.
+    fn lanes(&self) -> [[f64; 3]; 4] {
+        let (x, y, z) = (self.x.to_array(), self.y.to_array(), self.z.to_array());
+        std::array::from_fn(|k| [x[k], y[k], z[k]])
     }
 }
 
@@ -113,11 +111,11 @@ pub fn triangles_x4(tris: &[[DVec3; 3]; 4], eye: DVec3) -> [Option<TriangleK<f64
         n[i] = c.scale(rcp).scale(s);
     }
     ok &= bits(p.simd_gt(f64x4::ZERO)) & finite(p) & finite(nrm.x) & finite(nrm.y) & finite(nrm.z);
-    let p = p.to_array();
+    let (p, n, nrm) = (p.to_array(), n.map(|e| e.lanes()), nrm.lanes());
     std::array::from_fn(|k| {
         (ok >> k & 1 == 1).then(|| PolyK {
-            n: n.map(|e| e.lane(k)),
-            nrm: nrm.lane(k),
+            n: n.map(|e| e[k]),
+            nrm: nrm[k],
             p: p[k],
         })
     })
