@@ -5,7 +5,7 @@ use crate::errors::{py_err, scene_error_class, value_error};
 use crate::scene::Prepared;
 use crate::threads::run;
 use lanecast::{ColorMode, Variation};
-use numpy::ndarray::{Array2, Array3, Array4};
+use numpy::ndarray::{ArrayD, IxDyn};
 use numpy::{IntoPyArray, PyReadonlyArray1};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -40,12 +40,11 @@ impl Render {
     /// Only when rendered with `zdepth=True`.
     #[getter]
     fn zdepth(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
-        match &self.z {
-            Some(z) => Ok(z.clone_ref(py)),
-            None => Err(pyo3::exceptions::PyAttributeError::new_err(
-                "zdepth: render with zdepth=True (depth is the distance along the ray)",
-            )),
-        }
+        asked(
+            py,
+            &self.z,
+            "zdepth: render with zdepth=True (depth is the distance along the ray)",
+        )
     }
 
     /// Unit surface normal of each pixel's hit, world coordinates, facing the camera, float32
@@ -53,12 +52,7 @@ impl Render {
     /// `normals=True`.
     #[getter]
     fn normals(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
-        match &self.n {
-            Some(n) => Ok(n.clone_ref(py)),
-            None => Err(pyo3::exceptions::PyAttributeError::new_err(
-                "normals: render with normals=True",
-            )),
-        }
+        asked(py, &self.n, "normals: render with normals=True")
     }
 
     /// The image the command line writes for this render, uint8 (H, W, 3) (or (V, H, W, 3)):
@@ -87,6 +81,42 @@ impl Render {
     }
 }
 
+/// An extra the render computed, or an `AttributeError` saying how to ask for it.
+fn asked(py: Python<'_>, extra: &Option<Py<PyAny>>, how: &str) -> PyResult<Py<PyAny>> {
+    match extra {
+        Some(x) => Ok(x.clone_ref(py)),
+        None => Err(pyo3::exceptions::PyAttributeError::new_err(how.to_string())),
+    }
+}
+
+/// `data` as a numpy array of shape `shape`, moved without a copy.
+fn array<T: numpy::Element>(py: Python<'_>, data: Vec<T>, shape: &[usize]) -> Py<PyAny> {
+    let a = ArrayD::from_shape_vec(IxDyn(shape), data).expect("the buffer fills the shape");
+    a.into_pyarray(py).into_any().unbind()
+}
+
+impl Render {
+    /// The buffers of one view (`lead` empty) or of a batch (`lead` = [V]), each view `h` x
+    /// `w`, moved into numpy arrays: ids and depth (lead, H, W), z-depth likewise and normals
+    /// (lead, H, W, 3) when computed.
+    fn from_buffers(
+        py: Python<'_>,
+        lead: &[usize],
+        (h, w): (usize, usize),
+        (ids, depth): (Vec<i32>, Vec<f32>),
+        z: Option<Vec<f32>>,
+        n: Option<Vec<[f32; 3]>>,
+    ) -> Render {
+        let shape = [lead, &[h, w]].concat();
+        Render {
+            ids: array(py, ids, &shape),
+            depth: array(py, depth, &shape),
+            z: z.map(|z| array(py, z, &shape)),
+            n: n.map(|n| array(py, n.into_flattened(), &[&shape[..], &[3]].concat())),
+        }
+    }
+}
+
 /// One view from `prepared` through `cam`, the GIL released on `threads` threads: the
 /// library's ids and depth buffers moved into numpy without a copy, and the extras asked for.
 pub(crate) fn one(
@@ -105,23 +135,9 @@ pub(crate) fn one(
         })
     })?
     .map_err(|e| py_err(py, e))?;
-    let (h, w) = (frame.height as usize, frame.width as usize);
-    let ids = Array2::from_shape_vec((h, w), frame.ids).expect("h * w ids");
-    let depth = Array2::from_shape_vec((h, w), frame.depth).expect("h * w depths");
-    let z = z.map(|z| {
-        let z = Array2::from_shape_vec((h, w), z).expect("h * w");
-        z.into_pyarray(py).into_any().unbind()
-    });
-    let n = n.map(|n| {
-        let n = Array3::from_shape_vec((h, w, 3), n.into_flattened()).expect("h * w * 3");
-        n.into_pyarray(py).into_any().unbind()
-    });
-    Ok(Render {
-        ids: ids.into_pyarray(py).into_any().unbind(),
-        depth: depth.into_pyarray(py).into_any().unbind(),
-        z,
-        n,
-    })
+    let size = (frame.height as usize, frame.width as usize);
+    let buffers = (frame.ids, frame.depth);
+    Ok(Render::from_buffers(py, &[], size, buffers, z, n))
 }
 
 /// Many views from `prepared`, `cams` all `w` x `h`, the GIL released for the whole batch:
@@ -166,22 +182,16 @@ pub(crate) fn views(
             _ => err,
         }
     })?;
-    let v = cams.len();
-    let arr = |x| Array3::from_shape_vec((v, h, w), x).expect("v * h * w");
-    let ids = Array3::from_shape_vec((v, h, w), ids).expect("v * h * w");
-    let z = extras
-        .zdepth
-        .then(|| arr(zd).into_pyarray(py).into_any().unbind());
-    let normals = extras.normals.then(|| {
-        let nd = Array4::from_shape_vec((v, h, w, 3), nd.into_flattened()).expect("v*h*w*3");
-        nd.into_pyarray(py).into_any().unbind()
-    });
-    Ok(Render {
-        ids: ids.into_pyarray(py).into_any().unbind(),
-        depth: arr(depth).into_pyarray(py).into_any().unbind(),
+    let z = extras.zdepth.then_some(zd);
+    let n = extras.normals.then_some(nd);
+    Ok(Render::from_buffers(
+        py,
+        &[cams.len()],
+        (h, w),
+        (ids, depth),
         z,
-        n: normals,
-    })
+        n,
+    ))
 }
 
 /// shade(ids, depth, color_mode="random", variation="linear", seed=0): the image the command

@@ -166,8 +166,9 @@ impl PyScene {
     /// scene.render(camera=None, width=None, height=None, precision="auto", threads=None,
     /// zdepth=False, normals=False): one view, as a `Render` with `ids` (H, W) int32 (-1:
     /// background) and `depth` (H, W) float32 (distance along the unit ray, +inf: background),
-    /// `zdepth` (distance along the optical axis) and `normals` (H, W, 3) when asked for. `camera` None is the scene's own;
-    /// the size is the camera's (from intrinsics), else 640x480. The ids and depth buffers
+    /// and when asked for, `zdepth` (distance along the optical axis) and `normals` (H, W, 3).
+    /// `camera` None is the scene's own; the size is the camera's (from intrinsics), else
+    /// 640x480. The ids and depth buffers
     /// are the library's, moved into numpy without a copy. The GIL is released while the
     /// view renders, on `threads` threads (None: all cores).
     #[pyo3(signature = (camera = None, width = None, height = None, precision = "auto", threads = None, zdepth = false, normals = false))]
@@ -189,8 +190,9 @@ impl PyScene {
     }
 
     /// scene.render_views(cameras, width=None, height=None, precision="auto", threads=None,
-    /// zdepth=False, normals=False): many views from the scene's prepared views, as one `Render` whose arrays
-    /// are stacked (V, H, W), view v from cameras[v]; every camera must give the same size.
+    /// zdepth=False, normals=False): many views from the scene's prepared views, as one
+    /// `Render` whose arrays are stacked (V, H, W), view v from cameras[v]; every camera must
+    /// give the same size.
     /// Each view is rendered by the library into its recycled frame and copied into the
     /// stacked arrays. The GIL is released for the whole batch.
     #[pyo3(signature = (cameras, width = None, height = None, precision = "auto", threads = None, zdepth = false, normals = false))]
