@@ -94,7 +94,7 @@ def test_normals_face_the_camera_and_match_the_geometry():
     cam = lanecast.Camera(eye=(0, 2, 8), look=(0, 1, 0), up=(0, 1, 0), fov=60)
     scene = lanecast.Scene.from_arrays(vertices=v, triangles=[[0, 1, 2], [0, 3, 2]],
                                        spheres=[[0, 1, 0, 1]], camera=cam)
-    out = scene.render(cam, 80, 60, normals=True, zdepth=True)
+    out = scene.render(cam, 80, 60, normals=True)
     n = out.normals
     assert n.shape == (60, 80, 3) and n.dtype == np.float32
     hit = out.ids >= 0
@@ -105,29 +105,13 @@ def test_normals_face_the_camera_and_match_the_geometry():
     assert sphere.sum() > 100 and floor.sum() > 100
     assert np.allclose(n[floor], [0, 1, 0], atol=1e-7)
     # the sphere's normal: the hit point (eye + depth * ray) minus the centre
-    p = np.array([0, 2, 8.0]) + out.depth[..., None] * _rays(cam, 80, 60)
+    p = np.array([0, 2, 8.0]) + out.depth[..., None] * cam.rays(80, 60)[..., 3:]
     assert np.allclose(n[sphere], (p - [0, 1, 0])[sphere], atol=1e-5)
     batch = scene.render_views([cam, cam], 80, 60, normals=True)
     assert batch.normals.shape == (2, 60, 80, 3)
     assert same_bits(batch.normals[1], n)
     with pytest.raises(AttributeError, match="normals=True"):
         scene.render(cam, 80, 60).normals
-
-
-def _rays(cam, w, h):
-    """Unit rays per pixel, recovered from depth and z-depth's ratio and the camera basis:
-    the pinhole formula of README "Camera" (square pixels, fov across the width)."""
-    f = np.array(cam.look) - np.array(cam.eye)
-    f = f / np.linalg.norm(f)
-    r = np.cross(f, cam.up)
-    r = r / np.linalg.norm(r)
-    u = np.cross(r, f)
-    half_w = np.tan(np.radians(cam.fov) / 2)
-    half_h = half_w * h / w
-    sx = ((np.arange(w) + 0.5) / w * 2 - 1) * half_w
-    sy = (1 - (np.arange(h) + 0.5) / h * 2) * half_h
-    d = f + sx[None, :, None] * r + sy[:, None, None] * u
-    return d / np.linalg.norm(d, axis=-1, keepdims=True)
 
 
 def test_threads_give_the_same_bits():
