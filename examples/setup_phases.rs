@@ -2,7 +2,11 @@
 //! camera (`scene::views::orbit`, as `--orbit N`), the best of `REPEAT` timings of each stage
 //! of the per-view work, run alone, in the current rayon pool (`RAYON_NUM_THREADS`):
 //!
-//! - `check`: the f32 range check from the view's eye (`validate::f32_range_from`);
+//! - `check`: the f32 range check from the view's eye, primitive by primitive
+//!   (`validate::f32_range_from`, what a one-view run does);
+//! - `check clusters`: the same check as many views do it (`Views::check`), settling clusters
+//!   of triangles at a time with bounds built once (`scene::range_clusters`; the build's time
+//!   and the share of clusters settled are printed too);
 //! - `pack`: the eye-relative f32 stores (`Packed::from_scene`);
 //! - `setup f32`, `setup auto`: the whole setup, `Renderer::new`, with `--precision f32` (the
 //!   stores, then every footprint, the tiles' lists and the screen order: `setup f32 - pack`
@@ -13,6 +17,7 @@
 //! Usage, printing the median over the views of each stage, ms:
 //!
 //!     RAYON_NUM_THREADS=2 cargo run --release --example setup_phases -- SCENE WxH VIEWS [REPEAT]
+use lanecast::experimental::scene::range_clusters::RangeClusters;
 use lanecast::experimental::scene::validate::f32_range_from;
 use lanecast::experimental::soa::Packed;
 use lanecast::scene::views::orbit;
@@ -50,19 +55,33 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         method,
         ..Options::default()
     };
-    let names = ["check", "pack", "setup f32", "setup auto", "render"];
+    let names = [
+        "check",
+        "check clusters",
+        "pack",
+        "setup f32",
+        "setup auto",
+        "render",
+    ];
     let mut times: Vec<Vec<f64>> = vec![Vec::new(); names.len()];
+    let clock = Instant::now();
+    let clusters = RangeClusters::new(&scene);
+    let build = clock.elapsed().as_secs_f64() * 1e3;
+    let mut settled = (0, 0);
     for spec in orbit(&scene.camera, views) {
         let camera = Camera::look_at(&spec, w, h)?;
         let eye = camera.eye;
         times[0].push(best(repeat, || f32_range_from(&scene, eye)));
-        times[1].push(best(repeat, || Packed::from_scene(&scene, eye)));
+        times[1].push(best(repeat, || clusters.check(&scene, eye)));
+        let (s, n) = clusters.settled(eye);
+        settled = (settled.0 + s, settled.1 + n);
+        times[2].push(best(repeat, || Packed::from_scene(&scene, eye)));
         let f32_ = options(Method::Default);
-        times[2].push(best(repeat, || Renderer::new(&scene, &camera, &f32_)));
+        times[3].push(best(repeat, || Renderer::new(&scene, &camera, &f32_)));
         let auto = options(Method::Auto);
-        times[3].push(best(repeat, || Renderer::new(&scene, &camera, &auto)));
+        times[4].push(best(repeat, || Renderer::new(&scene, &camera, &auto)));
         let r = Renderer::new(&scene, &camera, &auto)?;
-        times[4].push(best(repeat, || r.render()));
+        times[5].push(best(repeat, || r.render()));
     }
     println!(
         "{} primitives, {w}x{h}, {views} views, RAYON_NUM_THREADS={}; median over the views \
@@ -71,7 +90,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         std::env::var("RAYON_NUM_THREADS").unwrap_or_else(|_| "(all cores)".into())
     );
     for (name, t) in names.iter().zip(times) {
-        println!("  {name:<11} {:8.1}", median(t));
+        println!("  {name:<14} {:8.1}", median(t));
     }
+    println!(
+        "  clusters built once in {build:.1} ms; {:.1}% of the views' clusters settled",
+        100.0 * settled.0 as f64 / settled.1.max(1) as f64
+    );
     Ok(())
 }

@@ -5,20 +5,24 @@
 //! Every view is rendered exactly as a one-camera [`Renderer`] for the same camera and options
 //! renders it: ids and depths are bit-identical to `lanecast -i SCENE` with that camera, at any
 //! thread count (tests/views.rs). What depends on the camera (the eye-relative primitive
-//! constants, the tiles' bins) is built per view; what does not (the scene, its validation) is
-//! done once.
+//! constants, the tiles' bins) is built per view; what does not (the scene, its validation, the
+//! range check's cluster bounds) is done once.
 
 use super::{Frame, Options, Renderer};
 use crate::camera::Camera;
 use crate::error::Result;
 use crate::scene::Scene;
-use std::sync::Mutex;
+use crate::scene::range_clusters::RangeClusters;
+use std::sync::{Mutex, OnceLock};
 
 /// A scene prepared for rendering from many cameras. Borrows the scene: `--precision auto`
 /// re-decides hits from its shapes.
 pub struct Views<'s> {
     scene: &'s Scene,
     options: Options,
+    /// The f32 range check's cluster bounds, built by the first view whose eye is not the
+    /// scene's (`scene::range_clusters`).
+    range: OnceLock<RangeClusters>,
     /// The last frame handed back ([`Views::recycle`]), whose buffers the next view fills.
     spare: Mutex<Option<Frame<f32>>>,
 }
@@ -31,6 +35,7 @@ impl<'s> Views<'s> {
         Ok(Views {
             scene,
             options: *options,
+            range: OnceLock::new(),
             spare: Mutex::new(None),
         })
     }
@@ -47,12 +52,16 @@ impl<'s> Views<'s> {
 
     /// Checks that the f32 kernels can represent every primitive seen from `camera`'s eye
     /// (`scene::validate::f32_range`, relative to this eye): the error names the first
-    /// primitive that cannot be. [`Views::render`] checks this too.
+    /// primitive that cannot be. [`Views::render`] checks this too. The first eye other than
+    /// the scene's builds bounds on clusters of primitives, built once, that settle most
+    /// clusters of each later view at a time (`scene::range_clusters`); the outcome is the
+    /// per-primitive check's.
     pub fn check(&self, camera: &Camera) -> Result<()> {
         if camera.eye == self.scene.camera.eye {
             return Ok(()); // checked when the scene was loaded
         }
-        crate::scene::validate::f32_range_from(self.scene, camera.eye)
+        let range = self.range.get_or_init(|| RangeClusters::new(self.scene));
+        range.check(self.scene, camera.eye)
     }
 
     /// Renders the view from `camera` (its own size) on the current rayon pool: the same ids

@@ -14,6 +14,7 @@ mod number;
 mod obj;
 pub(crate) mod parse;
 mod ply;
+pub(crate) mod range_clusters;
 mod scene_chunk;
 mod shapes;
 mod statement;

@@ -1,0 +1,331 @@
+//! The f32 range check of many views ([`validate::f32_range_from`] for each view's eye) settled
+//! a cluster of triangles at a time: [`RangeClusters`] is built once per scene, independent
+//! of any camera, and each view's check then tests one bound per cluster of [`CLUSTER`]
+//! consecutive primitives, going down to the per-primitive rules only for the clusters the
+//! bound cannot settle (those seen nearly edge-on, near the eye's plane, and any cluster that
+//! holds a sphere or a quad). The outcome, and the first primitive an error names, are
+//! [`validate::f32_range_from`]'s: a settled cluster holds no offending primitive.
+//!
+//! **The bound.** Per cluster, in f64: a bounding sphere (centre `c`, radius `rho`); the cone
+//! of the faces' normal *lines* (axis `a`, half-angle `theta`: every face's computed unit
+//! normal `n_f`, as the exact rules compute it, lies within `theta` of `+a` or `-a`); the
+//! shortest edge `l`; and `delta`, a bound on the angle between each computed `n_f` and its
+//! face's exact normal. For an eye at `e = eye - c`, `L = |e|`, `phi` the angle between `e`
+//! and the axis line, and `reach = L + rho` (no vertex is farther from the eye):
+//!
+//! - `|(eye - v) . n_f| >= |e . n_f| - rho >= L cos(phi + theta) - rho` for every vertex `v`
+//!   of face `f` (the eye is at least that far from each face's plane as the exact rules
+//!   measure it), and the exact plane is at most `reach * delta` nearer, so every face's
+//!   exact plane is at least `h = L cos(phi + theta) - rho - reach (delta + 1e-12)` from the
+//!   eye (the `1e-12 reach` covers this formula's own rounding, a few `u = 2^-53` of `reach`).
+//! - Distance rule: every `|r_k| <= reach`, accepted when `reach <= MAX_EYE_DISTANCE / 2`.
+//! - Plane rule: the exact rules' plane distance `p` (computed, error a few `u reach`) is at
+//!   least `h - 4u reach`; accepted when `h >= 2 f32::MIN_POSITIVE + 1e-10 reach`, so `p` is at
+//!   least `f32::MIN_POSITIVE`.
+//! - Edge rule: the sine an edge `v_i v_j` subtends from the eye is `|r_i x r_j| / (|r_i|
+//!   |r_j|) = |v_j - v_i| dist(eye, line v_i v_j) / (|r_i| |r_j|)`, and the edge's line lies in
+//!   the face's exact plane, so the sine is at least `l h / reach^2`; accepted when that is at
+//!   least `2 MIN_EDGE_ANGLE`, so the computed sine (error at most `8u`) passes
+//!   `MIN_EDGE_ANGLE`.
+//! - `delta`: the computed cross product `c' = (B - A) x (C - A)` errs from the exact `c` by at
+//!   most `12u |B - A| |C - A|` (each component's two products and subtraction, summed over
+//!   components by Cauchy-Schwarz), turning it by at most `2 |c' - c| / |c|`; normalising turns
+//!   it by a few `u`. With `q = |B - A| |C - A| / |c'|`: `delta <= 32u q / (1 - 16u q) + 8u`,
+//!   and a face with `16u q >= 1/2` (beyond what `DEGENERATE_TOL` lets through) leaves its
+//!   cluster to the per-primitive rules.
+//!
+//! Known to fail: never wrongly (every settled cluster's faces pass the exact rules, tested
+//! over random meshes, scales and eyes near planes, on edge lines and near the distance
+//! limit); it settles nothing where `cos(phi + theta)` is small, which is the silhouette of a
+//! curved cluster, and a cluster of unrelated faces (a mesh whose consecutive faces lie far
+//! apart) has a wide cone and a large `rho` and rarely settles.
+
+use super::validate;
+use super::{Scene, Shape};
+use crate::error::Error;
+use crate::limits::{MAX_EYE_DISTANCE, MIN_EDGE_ANGLE};
+use crate::par::prelude::*;
+use glam::DVec3;
+
+/// Primitives per cluster: consecutive ids.
+pub const CLUSTER: usize = 64;
+
+const U: f64 = f64::EPSILON / 2.0;
+
+/// One cluster's camera-independent bound (module comment).
+#[derive(Debug, Clone, Copy)]
+struct Bound {
+    centre: DVec3,
+    rho: f64,
+    axis: DVec3,
+    cos_theta: f64,
+    sin_theta: f64,
+    shortest: f64,
+    delta: f64,
+}
+
+/// The clusters' bounds of one scene, `None` for a cluster the bound never settles.
+#[derive(Debug, Clone)]
+pub struct RangeClusters {
+    bounds: Vec<Option<Bound>>,
+}
+
+impl RangeClusters {
+    /// The bounds of `scene`'s clusters, built on all threads.
+    pub fn new(scene: &Scene) -> RangeClusters {
+        let bounds = (scene.shapes.par_chunks(0..scene.shapes.len(), CLUSTER))
+            .map(|(_, shapes)| {
+                let mut tris = Vec::with_capacity(CLUSTER);
+                for s in shapes {
+                    match s {
+                        Shape::Triangle(v) => tris.push(v),
+                        _ => return None,
+                    }
+                }
+                Bound::of(&tris)
+            })
+            .collect();
+        RangeClusters { bounds }
+    }
+
+    /// [`validate::f32_range_from`]`(scene, eye)`, the same outcome and message, with the
+    /// clusters this bound settles skipped. `scene` is the one these were built from.
+    pub fn check(&self, scene: &Scene, eye: DVec3) -> Result<(), Error> {
+        debug_assert_eq!(self.bounds.len(), scene.shapes.len().div_ceil(CLUSTER));
+        validate::f32_range_skipping(scene, eye, CLUSTER, |k| {
+            self.bounds[k].is_some_and(|b| b.settles(eye))
+        })
+    }
+
+    /// How many clusters the bound settles from `eye`, and how many there are.
+    pub fn settled(&self, eye: DVec3) -> (usize, usize) {
+        let n = (self.bounds.par_iter())
+            .filter(|b| b.is_some_and(|b| b.settles(eye)))
+            .count();
+        (n, self.bounds.len())
+    }
+}
+
+impl Bound {
+    /// The bound of a cluster of triangles, `None` when it has none (empty, a normal cone
+    /// reaching a right angle, a face too thin for `delta`, anything not finite).
+    fn of(tris: &[[DVec3; 3]]) -> Option<Bound> {
+        let first = tris.first()?;
+        let (mut lo, mut hi) = (first[0], first[0]);
+        let mut shortest = f64::INFINITY;
+        let mut delta = 0f64;
+        let mut normals = Vec::with_capacity(tris.len());
+        for v in tris {
+            for k in 0..3 {
+                lo = lo.min(v[k]);
+                hi = hi.max(v[k]);
+                shortest = shortest.min((v[(k + 1) % 3] - v[k]).length());
+            }
+            // as the exact rules compute it (`validate::polygon_f32_exact`)
+            let (d, e) = (v[1] - v[0], v[2] - v[0]);
+            let c = d.cross(e);
+            let q = d.length() * e.length() / c.length();
+            if q.is_nan() || 16.0 * U * q >= 0.5 {
+                return None;
+            }
+            delta = delta.max(32.0 * U * q / (1.0 - 16.0 * U * q) + 8.0 * U);
+            normals.push(c.normalize_or_zero());
+        }
+        let centre = (lo + hi) * 0.5;
+        let rho = tris
+            .iter()
+            .flatten()
+            .map(|p| (*p - centre).length())
+            .fold(0.0, f64::max)
+            * (1.0 + 1e-9);
+        // the axis: the normals' sum, each turned to the first one's side (lines, not
+        // directions: the bound takes |e . n_f|)
+        let n0 = normals[0];
+        let sum: DVec3 = normals
+            .iter()
+            .map(|n| if n.dot(n0) < 0.0 { -*n } else { *n })
+            .sum();
+        let axis = sum.normalize_or_zero();
+        let cos_min = normals
+            .iter()
+            .map(|n| n.dot(axis).abs())
+            .fold(1.0, f64::min);
+        // (1e-9 rad over the acos's and the dot products' rounding)
+        let theta = cos_min.min(1.0).acos() + 1e-9;
+        let bound = Bound {
+            centre,
+            rho,
+            axis,
+            cos_theta: theta.cos(),
+            sin_theta: theta.sin(),
+            shortest: shortest * (1.0 - 1e-9),
+            delta,
+        };
+        let finite = [centre, axis].iter().all(|v| v.is_finite())
+            && [rho, shortest, delta].iter().all(|x| x.is_finite());
+        (finite && shortest > 0.0 && axis != DVec3::ZERO && theta < std::f64::consts::FRAC_PI_2)
+            .then_some(bound)
+    }
+
+    /// True when every face of the cluster passes the exact rules from `eye` (module comment).
+    #[inline]
+    fn settles(&self, eye: DVec3) -> bool {
+        let e = eye - self.centre;
+        let l = e.length();
+        let reach = l + self.rho;
+        if reach.is_nan() || reach > MAX_EYE_DISTANCE / 2.0 || l == 0.0 {
+            return false;
+        }
+        let cos_phi = (e.dot(self.axis).abs() / l).min(1.0);
+        let sin_phi = (1.0 - cos_phi * cos_phi).max(0.0).sqrt();
+        let cos = cos_phi * self.cos_theta - sin_phi * self.sin_theta;
+        let h = l * cos - self.rho - reach * (self.delta + 1e-12);
+        h >= 2.0 * f64::from(f32::MIN_POSITIVE) + 1e-10 * reach
+            && self.shortest * h >= 2.0 * MIN_EDGE_ANGLE * reach * reach
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{Mesh, Shapes};
+    use crate::test_rng::Rng;
+    use std::path::Path;
+
+    /// A random bumpy sheet of `n` x `n` quads split in two triangles, around `centre`, each
+    /// of its cells `size` wide, faces in rows (consecutive faces are neighbours).
+    fn sheet(rng: &mut Rng, n: usize, size: f64, centre: DVec3) -> Mesh {
+        let mut vertices = Vec::new();
+        let bump = rng.log(-6.0, 0.0);
+        for i in 0..=n {
+            for j in 0..=n {
+                let (x, z) = (i as f64 * size, j as f64 * size);
+                vertices.push(centre + DVec3::new(x, rng.range(-1.0, 1.0) * size * bump, z));
+            }
+        }
+        let at = |i: usize, j: usize| (i * (n + 1) + j) as u32;
+        let mut faces = Vec::new();
+        for i in 0..n {
+            for j in 0..n {
+                faces.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+                faces.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+            }
+        }
+        Mesh { vertices, faces }
+    }
+
+    /// Over random sheets at scales 1e-12 to 1e12 and far from the origin, seen from eyes
+    /// anywhere, near the sheet's planes, on the lines of its edges and near the distance
+    /// limit: every face of a settled cluster passes the exact rules (the claim), the check's
+    /// outcome and message are `f32_range_from`'s, and ordinary eyes settle most clusters
+    /// (the bound is not vacuous).
+    #[test]
+    fn a_settled_cluster_holds_only_faces_the_exact_rules_pass() {
+        let mut rng = Rng(0x5EED_C1A5);
+        let (mut settled, mut total, mut refused) = (0, 0, 0);
+        let mut ordinary = (0, 0);
+        let mut by_kind = [0; 7];
+        for case in 0..700 {
+            let size = rng.log(-12.0, 12.0);
+            let far = rng.log(0.0, 6.0) * size;
+            let centre = rng.direction() * far * rng.unit();
+            let mesh = sheet(&mut rng, 12, size, centre);
+            let text = "camera eye 0 0 0 look 0 0 -1 up 0 1 0\n";
+            let mut scene = crate::parse_scene(text, Path::new("c.sc")).unwrap();
+            scene.shapes = Shapes::new();
+            scene.shapes.push_mesh(mesh.clone(), 1);
+            let clusters = RangeClusters::new(&scene);
+            let span = 12.0 * size;
+            let v = mesh.vertices[rng.below(mesh.vertices.len() as u32) as usize];
+            let w = mesh.vertices[rng.below(mesh.vertices.len() as u32) as usize];
+            let eye = match case % 7 {
+                // ordinary: anywhere, two to 1e4 sheet sizes away
+                0 | 1 => v + rng.direction() * span * rng.log(0.3, 4.0),
+                // close to the sheet
+                2 => v + rng.direction() * span * rng.log(-3.0, 0.3),
+                // near a face's plane (the sheet is nearly the y = const plane)
+                3 => {
+                    v + DVec3::new(rng.range(-1.0, 1.0), 0.0, rng.range(-1.0, 1.0))
+                        * span
+                        * rng.log(0.0, 3.0)
+                        + DVec3::Y * span * rng.log(-16.0, 0.0) * rng.range(-1.0, 1.0)
+                }
+                // on the line through two vertices, beyond them, or just off it (edges that
+                // subtend about MIN_EDGE_ANGLE)
+                4 => {
+                    let on = v + (w - v) * rng.range(1.5, 40.0);
+                    on + rng.direction() * (on - v).length() * rng.log(-14.0, -6.0)
+                }
+                // so far that the shortest edges subtend about MIN_EDGE_ANGLE
+                5 => v + rng.direction() * size * rng.log(11.0, 13.0),
+                // near the distance limit
+                _ => v + rng.direction() * MAX_EYE_DISTANCE * rng.range(0.3, 0.6),
+            };
+            for (k, b) in clusters.bounds.iter().enumerate() {
+                let Some(b) = b else { continue };
+                total += 1;
+                if b.settles(eye) {
+                    settled += 1;
+                    by_kind[case % 7] += 1;
+                    for id in k * CLUSTER..((k + 1) * CLUSTER).min(scene.shapes.len()) {
+                        let shape = scene.shapes.get(id);
+                        assert!(
+                            validate::f32_range_skipping(&one(&shape), eye, 1, |_| false).is_ok(),
+                            "case {case}: cluster {k} settled, face {id} fails, eye {eye}"
+                        );
+                    }
+                }
+                if case % 7 < 2 {
+                    ordinary.0 += usize::from(b.settles(eye));
+                    ordinary.1 += 1;
+                }
+            }
+            let plain = validate::f32_range_from(&scene, eye).map_err(|e| e.to_string());
+            let fast = clusters.check(&scene, eye).map_err(|e| e.to_string());
+            assert_eq!(plain, fast, "case {case}");
+            refused += usize::from(plain.is_err());
+        }
+        // the bound settles most clusters seen from ordinary eyes, and some seen from close,
+        // from so far that edges subtend about MIN_EDGE_ANGLE and from near the distance
+        // limit (where the exact rules refuse some eyes): it is exercised near its edges.
+        // (Eyes near a face's plane or an edge's line settle next to nothing: the eye must be
+        // farther from the plane than the cluster's radius.)
+        assert!(
+            4 * ordinary.0 > 3 * ordinary.1,
+            "ordinary eyes: {ordinary:?}"
+        );
+        assert!([2, 5, 6].iter().all(|&k| by_kind[k] > 10), "{by_kind:?}");
+        assert!(
+            settled > 900 && total - settled > 1000,
+            "{settled} of {total}"
+        );
+        assert!(refused > 50, "{refused} refused");
+    }
+
+    /// A scene of one shape.
+    fn one(shape: &Shape) -> Scene {
+        let text = "camera eye 0 0 0 look 0 0 -1 up 0 1 0\n";
+        let mut scene = crate::parse_scene(text, Path::new("one.sc")).unwrap();
+        scene.shapes = Shapes::new();
+        scene.shapes.push(*shape, 1);
+        scene
+    }
+
+    /// Spheres and quads are never settled by a cluster; the check still finds them.
+    #[test]
+    fn clusters_with_other_shapes_fall_back_to_the_rules() {
+        let text = "camera eye 0 0 5 look 0 0 0 up 0 1 0\n\
+                    triangle -1 0 0  1 0 0  0 1 0\n\
+                    sphere 0 0 -1e19 1\n";
+        let scene = crate::scene::parse::parse_scene(text, Path::new("s.sc")).unwrap();
+        let clusters = RangeClusters::new(&scene);
+        assert!(clusters.bounds.iter().all(Option::is_none));
+        let eye = DVec3::new(0.0, 0.0, 5.0);
+        let plain = validate::f32_range_from(&scene, eye)
+            .unwrap_err()
+            .to_string();
+        let fast = clusters.check(&scene, eye).unwrap_err().to_string();
+        assert_eq!(plain, fast);
+        assert!(fast.contains("s.sc:3"), "{fast}");
+    }
+}
