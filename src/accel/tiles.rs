@@ -168,7 +168,7 @@ fn lower_bits(v: f32) -> u32 {
 }
 
 /// Per-tile lists of primitives, nearest first.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 pub struct Tiles {
     cols: usize,
     /// `start[t]..start[t + 1]` is tile t's range of `entries` (tiles in row-major order).

@@ -45,7 +45,7 @@ pub const STRIP_ROWS: usize = TILE_H;
 /// What the packet kernel traces against: the SoA stores, and the BVH over them when the
 /// acceleration is `bvh` (the stores are then in the BVH's leaf order) or the tile lists when
 /// it is `tiles`.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 pub struct PacketScene {
     packed: Packed,
     bvh: Option<Bvh>,
@@ -59,7 +59,24 @@ impl PacketScene {
         camera: &crate::camera::Camera,
         accel: Accel,
     ) -> PacketScene {
+        PacketScene::new_in(scene, camera, accel, PacketScene::default())
+    }
+
+    /// [`PacketScene::new`], written into the buffers of `spare` (another view's of the same
+    /// scene) rather than fresh memory where they are rebuilt from the scene: the stores'
+    /// columns ([`Packed::from_scene_in`]) and the tiles' lists ([`Tiles::new_in`]).
+    pub fn new_in(
+        scene: &crate::scene::Scene,
+        camera: &crate::camera::Camera,
+        accel: Accel,
+        spare: PacketScene,
+    ) -> PacketScene {
         let eye = camera.eye;
+        let PacketScene {
+            packed: spare_packed,
+            tiles: spare_tiles,
+            ..
+        } = spare;
         match accel.resolve(scene.shapes.len()) {
             Accel::Bvh => {
                 let prepared = Prepared::new(scene, eye);
@@ -71,8 +88,9 @@ impl PacketScene {
                 }
             }
             Accel::Tiles => {
-                let mut packed = Packed::from_scene(scene, eye);
-                let (tiles, order) = Tiles::new(scene, &packed, camera);
+                let mut packed = Packed::from_scene_in(scene, eye, spare_packed);
+                let spare_tiles = spare_tiles.unwrap_or_default();
+                let (tiles, order) = Tiles::new_in(scene, &packed, camera, spare_tiles);
                 packed.permute(&order);
                 PacketScene {
                     packed,
@@ -81,7 +99,7 @@ impl PacketScene {
                 }
             }
             _ => PacketScene {
-                packed: Packed::from_scene(scene, eye),
+                packed: Packed::from_scene_in(scene, eye, spare_packed),
                 bvh: None,
                 tiles: None,
             },

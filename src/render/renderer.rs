@@ -74,6 +74,15 @@ enum Job<'s> {
     Method(Box<dyn method::MethodRender + 's>),
 }
 
+/// What a finished renderer leaves for the next one of the same scene to fill rather than
+/// allocate ([`Renderer::into_spare`], [`Renderer::with_spare`]): its last recycled frame and
+/// the packet kernel's buffers (stores and tiles).
+#[derive(Debug, Default)]
+pub(crate) struct Spare {
+    pub(crate) frame: Option<Frame<f32>>,
+    pub(crate) scene: PacketScene,
+}
+
 impl<'s> Renderer<'s> {
     /// Prepares `scene` seen by `camera` (the setup phase). Fails when the options contradict
     /// each other: a method other than the default with a scalar kernel, or an acceleration
@@ -83,13 +92,32 @@ impl<'s> Renderer<'s> {
         camera: &crate::camera::Camera,
         options: &Options,
     ) -> crate::Result<Renderer<'s>> {
+        Renderer::with_spare(scene, camera, options, Spare::default())
+    }
+
+    /// [`Renderer::new`], filling `spare`'s buffers (another renderer's of the same scene,
+    /// [`Renderer::into_spare`]) rather than new ones: the same renderer, the same frames.
+    pub(crate) fn with_spare(
+        scene: &'s crate::scene::Scene,
+        camera: &crate::camera::Camera,
+        options: &Options,
+        spare: Spare,
+    ) -> crate::Result<Renderer<'s>> {
         options.check()?;
         let job = match (options.method, options.kernel) {
             (Method::Auto, Kernel::Packet) => {
-                return Ok(Renderer::auto(scene, camera, options.accel));
+                let r = Renderer::auto_in(scene, camera, options.accel, spare.scene);
+                r.keep(spare.frame);
+                return Ok(r);
             }
             (Method::Default | Method::Auto, kernel) => Job::Setup(
-                Box::new(Setup::with_accel(kernel, options.accel, scene, camera)),
+                Box::new(Setup::with_accel_in(
+                    kernel,
+                    options.accel,
+                    scene,
+                    camera,
+                    spare.scene,
+                )),
                 None,
             ),
             (m, _) => Job::Method(m.prepare_with(scene, camera, options.accel)),
@@ -98,8 +126,27 @@ impl<'s> Renderer<'s> {
             width: camera.width as usize,
             height: camera.height as usize,
             job,
-            spare: Mutex::new(None),
+            spare: Mutex::new(spare.frame),
         })
+    }
+
+    /// The buffers this renderer leaves for the next ([`Renderer::with_spare`]).
+    pub(crate) fn into_spare(self) -> Spare {
+        let frame = self.spare.into_inner().unwrap_or_else(|e| e.into_inner());
+        let scene = match self.job {
+            Job::Setup(setup, _) => match *setup {
+                Setup::Packet(p, _) => *p,
+                _ => PacketScene::default(),
+            },
+            Job::Method(_) => PacketScene::default(),
+        };
+        Spare { frame, scene }
+    }
+
+    fn keep(&self, frame: Option<Frame<f32>>) {
+        if let Some(f) = frame {
+            self.recycle(f);
+        }
     }
 
     /// The packet kernel with the f32 hits that cannot be trusted decided again in f64
@@ -109,7 +156,17 @@ impl<'s> Renderer<'s> {
         camera: &crate::camera::Camera,
         accel: Accel,
     ) -> Renderer<'s> {
-        let mut p = PacketScene::new(scene, camera, accel);
+        Renderer::auto_in(scene, camera, accel, PacketScene::default())
+    }
+
+    /// [`Renderer::auto`], written into `spare`'s buffers ([`PacketScene::new_in`]).
+    fn auto_in(
+        scene: &'s crate::scene::Scene,
+        camera: &crate::camera::Camera,
+        accel: Accel,
+        spare: PacketScene,
+    ) -> Renderer<'s> {
+        let mut p = PacketScene::new_in(scene, camera, accel, spare);
         let mut redecide = Redecide::new(scene, camera, &p.packed);
         if let Some(tiles) = &mut p.tiles {
             redecide.attach_to(tiles, &p.packed, camera);

@@ -97,9 +97,21 @@ impl Setup {
         scene: &crate::scene::Scene,
         camera: &crate::camera::Camera,
     ) -> Setup {
+        Setup::with_accel_in(kernel, accel, scene, camera, PacketScene::default())
+    }
+
+    /// [`Setup::with_accel`], the packet kernel's buffers written into `spare`'s
+    /// ([`PacketScene::new_in`]); the scalar kernels drop it.
+    pub fn with_accel_in(
+        kernel: Kernel,
+        accel: Accel,
+        scene: &crate::scene::Scene,
+        camera: &crate::camera::Camera,
+        spare: PacketScene,
+    ) -> Setup {
         match kernel {
             Kernel::Packet => Setup::Packet(
-                Box::new(PacketScene::new(scene, camera, accel)),
+                Box::new(PacketScene::new_in(scene, camera, accel, spare)),
                 camera.tables(BLOCK_W as u32, BLOCK_H as u32),
             ),
             Kernel::ScalarF32 => {

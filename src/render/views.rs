@@ -1,6 +1,7 @@
 //! Many views of one scene: [`Views`] holds a loaded scene and the render options, and renders
 //! any number of cameras (a turntable, a camera path, a dataset of poses) one after another,
-//! each frame's buffers recycled for the next.
+//! each view written into the buffers of the view before (its frame, its stores' columns, its
+//! tiles' lists), so that after the first view most of a view's memory is already in use.
 //!
 //! Every view is rendered exactly as a one-camera [`Renderer`] for the same camera and options
 //! renders it: ids and depths are bit-identical to `lanecast -i SCENE` with that camera, at any
@@ -8,6 +9,7 @@
 //! constants, the tiles' bins) is built per view; what does not (the scene, its validation, the
 //! range check's cluster bounds) is done once.
 
+use super::renderer::Spare;
 use super::{Frame, Options, Renderer};
 use crate::camera::Camera;
 use crate::error::Result;
@@ -23,8 +25,9 @@ pub struct Views<'s> {
     /// The f32 range check's cluster bounds, built by the first view whose eye is not the
     /// scene's (`scene::range_clusters`).
     range: OnceLock<RangeClusters>,
-    /// The last frame handed back ([`Views::recycle`]), whose buffers the next view fills.
-    spare: Mutex<Option<Frame<f32>>>,
+    /// The buffers the next view fills: the last frame handed back ([`Views::recycle`]) and
+    /// the stores of the last renderer handed back ([`Views::give_back`]).
+    spare: Mutex<Spare>,
 }
 
 impl<'s> Views<'s> {
@@ -36,7 +39,7 @@ impl<'s> Views<'s> {
             scene,
             options: *options,
             range: OnceLock::new(),
-            spare: Mutex::new(None),
+            spare: Mutex::new(Spare::default()),
         })
     }
 
@@ -68,28 +71,40 @@ impl<'s> Views<'s> {
     /// and depths as `Renderer::new(scene, camera, options)?.render()`.
     pub fn render(&self, camera: &Camera) -> Result<Frame<f32>> {
         self.check(camera)?;
-        Ok(self.renderer(camera)?.render())
+        let renderer = self.renderer(camera)?;
+        let frame = renderer.render();
+        self.give_back(renderer);
+        Ok(frame)
     }
 
     /// The prepared one-camera renderer for `camera` (the per-view setup), for a caller that
-    /// wants its counters or progress ([`Renderer::render_marking`]). The eye's range is not
-    /// checked here: call [`Views::check`] first.
+    /// wants its counters or progress ([`Renderer::render_marking`]); hand it back with
+    /// [`Views::give_back`] once done. The eye's range is not checked here: call
+    /// [`Views::check`] first.
     pub fn renderer(&self, camera: &Camera) -> Result<Renderer<'s>> {
-        let renderer = Renderer::new(self.scene, camera, &self.options)?;
-        if let Some(f) = self.take_spare() {
-            renderer.recycle(f);
+        let spare = std::mem::take(&mut *self.spare());
+        Renderer::with_spare(self.scene, camera, &self.options, spare)
+    }
+
+    /// Hands a renderer back once its frame is rendered: the next view's stores and tiles are
+    /// written into its buffers rather than fresh memory.
+    pub fn give_back(&self, renderer: Renderer<'s>) {
+        let left = renderer.into_spare();
+        let mut spare = self.spare();
+        spare.scene = left.scene;
+        if spare.frame.is_none() {
+            spare.frame = left.frame;
         }
-        Ok(renderer)
     }
 
     /// Hands a frame back once its caller is done with it: the next view fills its buffers
     /// when it has the same size.
     pub fn recycle(&self, frame: Frame<f32>) {
-        *self.spare.lock().unwrap_or_else(|e| e.into_inner()) = Some(frame);
+        self.spare().frame = Some(frame);
     }
 
-    fn take_spare(&self) -> Option<Frame<f32>> {
-        self.spare.lock().unwrap_or_else(|e| e.into_inner()).take()
+    fn spare(&self) -> std::sync::MutexGuard<'_, Spare> {
+        self.spare.lock().unwrap_or_else(|e| e.into_inner())
     }
 }
 

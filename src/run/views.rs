@@ -247,6 +247,7 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
                 1
             };
             stats.renders.push(render);
+            views.give_back(renderer);
             let clock = Instant::now();
             let rgb = shade(
                 &frame.ids,

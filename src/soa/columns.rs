@@ -43,6 +43,20 @@ impl Spheres {
         }
     }
 
+    /// Every column emptied, its allocation kept.
+    fn clear(&mut self) {
+        let cols = [
+            &mut self.ocx,
+            &mut self.ocy,
+            &mut self.ocz,
+            &mut self.r2,
+            &mut self.c,
+        ];
+        cols.into_iter().for_each(Vec::clear);
+        self.inside.clear();
+        self.id.clear();
+    }
+
     /// Number of spheres.
     pub fn len(&self) -> usize {
         self.id.len()
@@ -152,6 +166,12 @@ impl<const N: usize> Polygons<N> {
             p: col(&|k| k.p),
             id: g.id.iter().map(|&i| i as f32).collect(),
         }
+    }
+
+    /// Every column emptied, its allocation kept.
+    fn clear(&mut self) {
+        let cols = self.n.iter_mut().flatten().chain(&mut self.nrm);
+        cols.chain([&mut self.p, &mut self.id]).for_each(Vec::clear);
     }
 
     /// Number of polygons.
@@ -272,6 +292,13 @@ impl Packed {
     /// `SphereK::new`/`PolyK` constructors and f32 rounding as [`Prepared::new`] and
     /// [`Packed::new`], so the columns are identical), then joined in file order.
     pub fn from_scene(scene: &Scene, eye: DVec3) -> Packed {
+        Packed::from_scene_in(scene, eye, Packed::default())
+    }
+
+    /// [`Packed::from_scene`] written into `out`'s columns, emptied first: their allocations
+    /// are kept, so stores rebuilt for another eye of the same scene (a view of many) fill
+    /// memory already in use rather than fresh pages. The columns are those `from_scene` gives.
+    pub fn from_scene_in(scene: &Scene, eye: DVec3, mut out: Packed) -> Packed {
         const CHUNK: usize = 1 << 14;
         // Batches of a few chunks per thread: the parts of one batch are joined (and freed)
         // before the next is prepared, so the stores exist about once at any time, not twice.
@@ -279,7 +306,9 @@ impl Packed {
         // left out, are rare), so they never move or grow.
         let batch_len = CHUNK * (4 * crate::par::current_num_threads()).max(16);
         let (spheres, triangles, quads) = scene.counts();
-        let mut out = Packed::default();
+        out.spheres.clear();
+        out.triangles.clear();
+        out.quads.clear();
         out.spheres.reserve(spheres);
         out.triangles.reserve(triangles);
         out.quads.reserve(quads);

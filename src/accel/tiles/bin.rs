@@ -66,6 +66,17 @@ impl Tiles {
     /// name primitives in screen order, which the stores must then be rearranged to
     /// (`Packed::permute` with the order returned; `tiles.rs`, "Screen order").
     pub fn new(scene: &Scene, packed: &Packed, camera: &Camera) -> (Tiles, Order) {
+        Tiles::new_in(scene, packed, camera, Tiles::default())
+    }
+
+    /// [`Tiles::new`], the lists written into `spare`'s buffers (another view's tiles of the
+    /// same scene), emptied first, rather than fresh memory: the same tiles.
+    pub fn new_in(scene: &Scene, packed: &Packed, camera: &Camera, spare: Tiles) -> (Tiles, Order) {
+        let Tiles {
+            mut start,
+            mut entries,
+            ..
+        } = spare;
         let screen = Screen::new(camera);
         let (w, h) = (camera.width as usize, camera.height as usize);
         let (cols, rows) = (w.div_ceil(TILE_W), h.div_ceil(TILE_H));
@@ -158,7 +169,8 @@ impl Tiles {
                 counts[t].fetch_add(1, Ordering::Relaxed);
             }
         });
-        let mut start = Vec::with_capacity(cols * rows + 1);
+        start.clear();
+        start.reserve(cols * rows + 1);
         let mut sum = 0u32;
         start.push(0);
         for c in &counts {
@@ -176,14 +188,12 @@ impl Tiles {
                 slots[at as usize].store(i as u32 | bits << PACKETS_SHIFT, Ordering::Relaxed);
             }
         });
-        let mut entries: Vec<Entry> = slots
-            .into_par_iter()
-            .map(|s| {
-                let s = s.into_inner();
-                let e = &prints[(s & ((1 << PACKETS_SHIFT) - 1)) as usize];
-                Entry::new(e.near, e.prim, (s >> PACKETS_SHIFT) as u8)
-            })
-            .collect();
+        entries.clear();
+        entries.par_extend(slots.into_par_iter().map(|s| {
+            let s = s.into_inner();
+            let e = &prints[(s & ((1 << PACKETS_SHIFT) - 1)) as usize];
+            Entry::new(e.near, e.prim, (s >> PACKETS_SHIFT) as u8)
+        }));
         drop(prints);
         // Each tile nearest first; ties by kind and index, so the order is deterministic.
         let mut lists: Vec<&mut [Entry]> = Vec::with_capacity(cols * rows);
