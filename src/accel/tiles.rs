@@ -178,6 +178,8 @@ pub struct Tiles {
     /// (bits) where some entry's hits may lie beyond its value. A tile with none walks without
     /// carrying ([`PacketLists::carries`]).
     carries: Vec<u8>,
+    /// Binning's working buffers, emptied, kept for the next view's [`Tiles::new_in`].
+    scratch: bin::Scratch,
 }
 
 impl Tiles {

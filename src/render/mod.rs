@@ -59,17 +59,19 @@ impl PacketScene {
         camera: &crate::camera::Camera,
         accel: Accel,
     ) -> PacketScene {
-        PacketScene::new_in(scene, camera, accel, PacketScene::default())
+        PacketScene::new_in(scene, camera, accel, PacketScene::default(), false)
     }
 
     /// [`PacketScene::new`], written into the buffers of `spare` (another view's of the same
     /// scene) rather than fresh memory where they are rebuilt from the scene: the stores'
-    /// columns ([`Packed::from_scene_in`]) and the tiles' lists ([`Tiles::new_in`]).
+    /// columns ([`Packed::from_scene_in`]) and the tiles' lists ([`Tiles::new_in`], which
+    /// keeps its working buffers for the next view with `keep`).
     pub fn new_in(
         scene: &crate::scene::Scene,
         camera: &crate::camera::Camera,
         accel: Accel,
         spare: PacketScene,
+        keep: bool,
     ) -> PacketScene {
         let eye = camera.eye;
         let PacketScene {
@@ -90,7 +92,7 @@ impl PacketScene {
             Accel::Tiles => {
                 let mut packed = Packed::from_scene_in(scene, eye, spare_packed);
                 let spare_tiles = spare_tiles.unwrap_or_default();
-                let (tiles, order) = Tiles::new_in(scene, &packed, camera, spare_tiles);
+                let (tiles, order) = Tiles::new_in(scene, &packed, camera, spare_tiles, keep);
                 packed.permute(&order);
                 PacketScene {
                     packed,

@@ -83,8 +83,10 @@ pub struct Redecide<'s> {
     scene: &'s Scene,
     camera_eye: glam::DVec3,
     /// Per scene id: the distances `[lo, hi]` between which an f32 hit on that primitive is
-    /// trusted (the bounds above solved for `t` once per primitive; f32, rounded inward).
-    limits: Vec<[f32; 2]>,
+    /// trusted (the bounds above solved for `t` once per primitive; f32, rounded inward), as
+    /// the bits of both in one cell ([`unpack`]): written at each primitive's id on all
+    /// threads, read with relaxed loads (plain loads).
+    limits: Vec<AtomicU64>,
     /// A distance up to which a hit on any primitive is trusted (the least `hi`; -inf where
     /// one needs `lo`): the strip scan looks up only the pixels beyond it.
     safe: f32,
@@ -108,6 +110,27 @@ pub struct Redecide<'s> {
     /// What the last frame's tile path did ([`Work`]): packets walked, those that carried
     /// the trusted distance, hits measured.
     work: [AtomicUsize; 3],
+}
+
+/// The per-primitive buffers of a finished [`Redecide`], emptied, for the next view of the
+/// same scene to fill rather than fresh memory ([`Redecide::new_in`], [`Redecide::into_spare`]).
+#[derive(Debug, Default)]
+pub(crate) struct Spare {
+    limits: Vec<AtomicU64>,
+    plane_at: [Vec<u32>; 2],
+}
+
+/// `[lo, hi]` from their bits in one cell of `Redecide::limits` (`lo` low, `hi` high).
+#[inline(always)]
+fn pack([lo, hi]: [f32; 2]) -> u64 {
+    u64::from(lo.to_bits()) | u64::from(hi.to_bits()) << 32
+}
+
+/// The `[lo, hi]` a cell of `Redecide::limits` holds ([`pack`]).
+#[inline(always)]
+fn unpack(c: &AtomicU64) -> [f32; 2] {
+    let c = c.load(Ordering::Relaxed);
+    [f32::from_bits(c as u32), f32::from_bits((c >> 32) as u32)]
 }
 
 /// What `--precision auto` did on the tile path in a renderer's last frame
@@ -227,16 +250,31 @@ impl<'s> Redecide<'s> {
     /// The trusted distances of every primitive of `packed` (which `scene` seen by `camera`
     /// was packed into), and the camera's f64 ray tables.
     pub fn new(scene: &'s Scene, camera: &Camera, packed: &Packed) -> Redecide<'s> {
+        Redecide::new_in(scene, camera, packed, Spare::default())
+    }
+
+    /// [`Redecide::new`], the per-primitive buffers written into `spare`'s.
+    pub(crate) fn new_in(
+        scene: &'s Scene,
+        camera: &Camera,
+        packed: &Packed,
+        spare: Spare,
+    ) -> Redecide<'s> {
+        let Spare {
+            mut limits,
+            plane_at,
+        } = spare;
         let bounds = Bounds::new(camera.direction_error());
         let s = &packed.spheres;
         // each primitive's limits written at its id, on all threads (the ids of the stores
         // are distinct: each cell is written once at most)
-        let bits = |[lo, hi]: [f32; 2]| u64::from(lo.to_bits()) | u64::from(hi.to_bits()) << 32;
-        let cells: Vec<AtomicU64> = (0..scene.shapes.len())
-            .into_par_iter()
-            .map(|_| AtomicU64::new(bits([0.0, f32::INFINITY])))
-            .collect();
-        let put = |id: f32, l: [f32; 2]| cells[id as usize].store(bits(l), Ordering::Relaxed);
+        limits.clear();
+        limits.par_extend(
+            (0..scene.shapes.len())
+                .into_par_iter()
+                .map(|_| AtomicU64::new(pack([0.0, f32::INFINITY]))),
+        );
+        let put = |id: f32, l: [f32; 2]| limits[id as usize].store(pack(l), Ordering::Relaxed);
         (s.id.par_iter().zip(bounds.spheres(s))).for_each(|(&id, l)| put(id, l));
         for (ids, p) in [
             (&packed.triangles.id, &packed.triangles.p),
@@ -244,18 +282,12 @@ impl<'s> Redecide<'s> {
         ] {
             (ids.par_iter().zip(p)).for_each(|(&id, &p)| put(id, bounds.polygon(p)));
         }
-        let limits: Vec<[f32; 2]> = (cells.into_par_iter())
-            .map(|c| {
-                let c = c.into_inner();
-                [f32::from_bits(c as u32), f32::from_bits((c >> 32) as u32)]
-            })
-            .collect();
         // the least `hi` over the scene (-inf if any primitive needs `lo`): a pixel nearer
         // needs no lookup (the strip scan: the BVH and no acceleration; tiles carry each lane's)
         let safe = (packed.ids().into_iter())
             .map(|v| {
                 (v.par_iter())
-                    .map(|&id| carry(limits[id as usize]))
+                    .map(|&id| carry(unpack(&limits[id as usize])))
                     .reduce(|| f32::INFINITY, f32::min)
             })
             .fold(f32::INFINITY, f32::min);
@@ -275,13 +307,24 @@ impl<'s> Redecide<'s> {
             sphere_at,
             spheres,
             planes: [Vec::new(), Vec::new()],
-            plane_at: [Vec::new(), Vec::new()],
+            plane_at: plane_at.map(|mut v| {
+                v.clear();
+                v
+            }),
             scene,
             camera_eye: camera.eye,
             limits,
             safe,
             tables: camera.tables(4, 2),
             work: Default::default(),
+        }
+    }
+
+    /// The per-primitive buffers, for the next view's [`Redecide::new_in`].
+    pub(crate) fn into_spare(self) -> Spare {
+        Spare {
+            limits: self.limits,
+            plane_at: self.plane_at,
         }
     }
 
@@ -314,7 +357,7 @@ impl<'s> Redecide<'s> {
     pub(crate) fn attach_to(&mut self, tiles: &mut Tiles, packed: &Packed, camera: &Camera) {
         let ids = packed.ids();
         let marked = tiles.attach(packed, camera, TOLERANCE, |kind, i| {
-            carry(self.limits[ids[kind][i] as usize])
+            carry(unpack(&self.limits[ids[kind][i] as usize]))
         });
         let polygons: Vec<_> = marked.into_iter().filter(|&(kind, _)| kind > 0).collect();
         if polygons.is_empty() {
@@ -326,11 +369,11 @@ impl<'s> Redecide<'s> {
             .collect();
         // filled by the pool's threads, each first touching its own part (4 bytes a polygon:
         // 13 MB for 3.3M triangles), rather than by one
-        self.plane_at = [ids[1].len(), ids[2].len()].map(|n| {
-            let mut v = Vec::with_capacity(n);
+        let lens = [ids[1].len(), ids[2].len()];
+        for (v, n) in self.plane_at.iter_mut().zip(lens) {
+            v.clear();
             v.par_extend(crate::par::repeat_n(u32::MAX, n));
-            v
-        });
+        }
         for (&(kind, i), plane) in polygons.iter().zip(found) {
             // (a polygon's shape is always one)
             self.plane_at[kind - 1][i] = self.planes[kind - 1].len() as u32;

@@ -76,11 +76,15 @@ enum Job<'s> {
 
 /// What a finished renderer leaves for the next one of the same scene to fill rather than
 /// allocate ([`Renderer::into_spare`], [`Renderer::with_spare`]): its last recycled frame and
-/// the packet kernel's buffers (stores and tiles).
+/// the packet kernel's buffers (stores and tiles) and `--precision auto`'s.
 #[derive(Debug, Default)]
 pub(crate) struct Spare {
     pub(crate) frame: Option<Frame<f32>>,
     pub(crate) scene: PacketScene,
+    pub(crate) redecide: super::redecide::Spare,
+    /// Whether the renderer built from this keeps its working buffers for the next view
+    /// (`Views`), at the cost of holding them while it lives.
+    pub(crate) keep: bool,
 }
 
 impl<'s> Renderer<'s> {
@@ -106,9 +110,7 @@ impl<'s> Renderer<'s> {
         options.check()?;
         let job = match (options.method, options.kernel) {
             (Method::Auto, Kernel::Packet) => {
-                let r = Renderer::auto_in(scene, camera, options.accel, spare.scene);
-                r.keep(spare.frame);
-                return Ok(r);
+                return Ok(Renderer::auto_in(scene, camera, options.accel, spare));
             }
             (Method::Default | Method::Auto, kernel) => Job::Setup(
                 Box::new(Setup::with_accel_in(
@@ -117,6 +119,7 @@ impl<'s> Renderer<'s> {
                     scene,
                     camera,
                     spare.scene,
+                    spare.keep,
                 )),
                 None,
             ),
@@ -133,19 +136,21 @@ impl<'s> Renderer<'s> {
     /// The buffers this renderer leaves for the next ([`Renderer::with_spare`]).
     pub(crate) fn into_spare(self) -> Spare {
         let frame = self.spare.into_inner().unwrap_or_else(|e| e.into_inner());
-        let scene = match self.job {
-            Job::Setup(setup, _) => match *setup {
-                Setup::Packet(p, _) => *p,
-                _ => PacketScene::default(),
-            },
-            Job::Method(_) => PacketScene::default(),
+        let (scene, redecide) = match self.job {
+            Job::Setup(setup, redo) => (
+                match *setup {
+                    Setup::Packet(p, _) => *p,
+                    _ => PacketScene::default(),
+                },
+                redo.map(|r| r.into_spare()).unwrap_or_default(),
+            ),
+            Job::Method(_) => Default::default(),
         };
-        Spare { frame, scene }
-    }
-
-    fn keep(&self, frame: Option<Frame<f32>>) {
-        if let Some(f) = frame {
-            self.recycle(f);
+        Spare {
+            frame,
+            scene,
+            redecide,
+            keep: false,
         }
     }
 
@@ -156,18 +161,19 @@ impl<'s> Renderer<'s> {
         camera: &crate::camera::Camera,
         accel: Accel,
     ) -> Renderer<'s> {
-        Renderer::auto_in(scene, camera, accel, PacketScene::default())
+        Renderer::auto_in(scene, camera, accel, Spare::default())
     }
 
-    /// [`Renderer::auto`], written into `spare`'s buffers ([`PacketScene::new_in`]).
+    /// [`Renderer::auto`], written into `spare`'s buffers ([`PacketScene::new_in`],
+    /// [`Redecide::new_in`], the frame).
     fn auto_in(
         scene: &'s crate::scene::Scene,
         camera: &crate::camera::Camera,
         accel: Accel,
-        spare: PacketScene,
+        spare: Spare,
     ) -> Renderer<'s> {
-        let mut p = PacketScene::new_in(scene, camera, accel, spare);
-        let mut redecide = Redecide::new(scene, camera, &p.packed);
+        let mut p = PacketScene::new_in(scene, camera, accel, spare.scene, spare.keep);
+        let mut redecide = Redecide::new_in(scene, camera, &p.packed, spare.redecide);
         if let Some(tiles) = &mut p.tiles {
             redecide.attach_to(tiles, &p.packed, camera);
         }
@@ -179,7 +185,7 @@ impl<'s> Renderer<'s> {
                 Box::new(Setup::Packet(Box::new(p), tables)),
                 Some(Box::new(redecide)),
             ),
-            spare: Mutex::new(None),
+            spare: Mutex::new(spare.frame),
         }
     }
 

@@ -97,7 +97,7 @@ impl Setup {
         scene: &crate::scene::Scene,
         camera: &crate::camera::Camera,
     ) -> Setup {
-        Setup::with_accel_in(kernel, accel, scene, camera, PacketScene::default())
+        Setup::with_accel_in(kernel, accel, scene, camera, PacketScene::default(), false)
     }
 
     /// [`Setup::with_accel`], the packet kernel's buffers written into `spare`'s
@@ -108,10 +108,11 @@ impl Setup {
         scene: &crate::scene::Scene,
         camera: &crate::camera::Camera,
         spare: PacketScene,
+        keep: bool,
     ) -> Setup {
         match kernel {
             Kernel::Packet => Setup::Packet(
-                Box::new(PacketScene::new_in(scene, camera, accel, spare)),
+                Box::new(PacketScene::new_in(scene, camera, accel, spare, keep)),
                 camera.tables(BLOCK_W as u32, BLOCK_H as u32),
             ),
             Kernel::ScalarF32 => {

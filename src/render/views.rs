@@ -18,7 +18,10 @@ use crate::scene::range_clusters::RangeClusters;
 use std::sync::{Mutex, OnceLock};
 
 /// A scene prepared for rendering from many cameras. Borrows the scene: `--precision auto`
-/// re-decides hits from its shapes.
+/// re-decides hits from its shapes. Between views it keeps the last view's buffers (its frame,
+/// stores, tiles' lists and working buffers, `auto`'s per-primitive arrays), emptied, for the
+/// next view to fill: about as much memory as one view's setup uses, held until the `Views`
+/// is dropped (docs/performance.md, "Many views", gives the figures).
 pub struct Views<'s> {
     scene: &'s Scene,
     options: Options,
@@ -26,7 +29,7 @@ pub struct Views<'s> {
     /// scene's (`scene::range_clusters`).
     range: OnceLock<RangeClusters>,
     /// The buffers the next view fills: the last frame handed back ([`Views::recycle`]) and
-    /// the stores of the last renderer handed back ([`Views::give_back`]).
+    /// those of the last renderer handed back ([`Views::give_back`]).
     spare: Mutex<Spare>,
 }
 
@@ -82,7 +85,10 @@ impl<'s> Views<'s> {
     /// [`Views::give_back`] once done. The eye's range is not checked here: call
     /// [`Views::check`] first.
     pub fn renderer(&self, camera: &Camera) -> Result<Renderer<'s>> {
-        let spare = std::mem::take(&mut *self.spare());
+        let spare = Spare {
+            keep: true,
+            ..std::mem::take(&mut *self.spare())
+        };
         Renderer::with_spare(self.scene, camera, &self.options, spare)
     }
 
@@ -92,6 +98,7 @@ impl<'s> Views<'s> {
         let left = renderer.into_spare();
         let mut spare = self.spare();
         spare.scene = left.scene;
+        spare.redecide = left.redecide;
         if spare.frame.is_none() {
             spare.frame = left.frame;
         }
@@ -129,10 +136,22 @@ mod tests {
                         triangle -3 0 -2  3 0 -2  0 3 -2\n\
                         quad -4 0 -4  4 0 -4  4 0 4  -4 0 4\n";
 
+    /// Views of changing eyes, fields of view and sizes, each rendered into the buffers of the
+    /// one before (with `--precision auto` and `f32`), give a fresh renderer's ids and depths.
     #[test]
     fn every_view_renders_as_a_renderer_of_its_own() {
+        for method in [crate::Method::Auto, crate::Method::Default] {
+            let options = Options {
+                method,
+                ..Options::default()
+            };
+            views_render_alone(&options);
+        }
+    }
+
+    fn views_render_alone(options: &Options) {
         let scene = parse_scene(TEXT, Path::new("v.sc")).unwrap();
-        let options = Options::default();
+        let options = *options;
         let views = Views::new(&scene, &options).unwrap();
         for k in 0..12 {
             let a = k as f64 * 0.5;
@@ -150,6 +169,11 @@ mod tests {
             assert_eq!(bits(&frame.depth), bits(&alone.depth), "view {k}");
             assert!(frame.ids.iter().any(|&i| i >= 0), "view {k} sees the scene");
             views.recycle(frame);
+            // the stores are kept for the next view
+            assert!(
+                views.spare().scene.packed.triangles.id.capacity() > 0,
+                "view {k}"
+            );
         }
     }
 

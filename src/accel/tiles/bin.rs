@@ -61,20 +61,48 @@ pub(super) fn packet_bits([x0, y0, x1, y1]: [usize; 4], (ox, oy): (usize, usize)
     cols * rows
 }
 
+/// Binning's working buffers: every primitive's footprint, and the counting sort's slots.
+/// Kept (empty) between views so that the next binning fills memory already in use.
+#[derive(Debug, Default)]
+pub(crate) struct Scratch {
+    prints: Vec<Print>,
+    slots: Vec<AtomicU32>,
+}
+
+impl Clone for Scratch {
+    /// Empty: the buffers hold nothing between binnings, and a clone need not keep their room.
+    fn clone(&self) -> Scratch {
+        Scratch::default()
+    }
+}
+
 impl Tiles {
     /// Bins the primitives of `packed` (whose ids index `scene.shapes`) for `camera`. The lists
     /// name primitives in screen order, which the stores must then be rearranged to
     /// (`Packed::permute` with the order returned; `tiles.rs`, "Screen order").
     pub fn new(scene: &Scene, packed: &Packed, camera: &Camera) -> (Tiles, Order) {
-        Tiles::new_in(scene, packed, camera, Tiles::default())
+        Tiles::new_in(scene, packed, camera, Tiles::default(), false)
     }
 
     /// [`Tiles::new`], the lists written into `spare`'s buffers (another view's tiles of the
-    /// same scene), emptied first, rather than fresh memory: the same tiles.
-    pub fn new_in(scene: &Scene, packed: &Packed, camera: &Camera, spare: Tiles) -> (Tiles, Order) {
+    /// same scene), emptied first, rather than fresh memory: the same tiles. With `keep`, the
+    /// working buffers (every footprint, the counting sort's slots) are kept in the tiles for
+    /// the next view, emptied; without it they are freed once the lists are built, as
+    /// [`Tiles::new`] does (they are the largest part of binning's memory).
+    pub fn new_in(
+        scene: &Scene,
+        packed: &Packed,
+        camera: &Camera,
+        spare: Tiles,
+        keep: bool,
+    ) -> (Tiles, Order) {
         let Tiles {
             mut start,
             mut entries,
+            scratch: Scratch {
+                mut prints,
+                mut slots,
+            },
             ..
         } = spare;
         let screen = Screen::new(camera);
@@ -100,7 +128,7 @@ impl Tiles {
             }
         };
         // Every primitive's footprint, in parallel.
-        let mut prints: Vec<Print> = Vec::new();
+        prints.clear();
         prints.par_extend(
             (0..packed.spheres.len())
                 .into_par_iter()
@@ -181,7 +209,8 @@ impl Tiles {
             .iter()
             .map(|&s| AtomicU32::new(s))
             .collect();
-        let slots: Vec<AtomicU32> = (0..sum).map(|_| AtomicU32::new(0)).collect();
+        slots.clear();
+        slots.par_extend((0..sum).into_par_iter().map(|_| AtomicU32::new(0)));
         prints.par_iter().enumerate().for_each(|(i, e)| {
             for (t, bits) in covered(e, true) {
                 let at = cursor[t].fetch_add(1, Ordering::Relaxed);
@@ -189,12 +218,19 @@ impl Tiles {
             }
         });
         entries.clear();
-        entries.par_extend(slots.into_par_iter().map(|s| {
-            let s = s.into_inner();
+        entries.par_extend(slots.par_iter().map(|s| {
+            let s = s.load(Ordering::Relaxed);
             let e = &prints[(s & ((1 << PACKETS_SHIFT) - 1)) as usize];
             Entry::new(e.near, e.prim, (s >> PACKETS_SHIFT) as u8)
         }));
-        drop(prints);
+        let scratch = match keep {
+            true => {
+                prints.clear();
+                slots.clear();
+                Scratch { prints, slots }
+            }
+            false => Scratch::default(),
+        };
         // Each tile nearest first; ties by kind and index, so the order is deterministic.
         let mut lists: Vec<&mut [Entry]> = Vec::with_capacity(cols * rows);
         let mut rest = entries.as_mut_slice();
@@ -212,6 +248,7 @@ impl Tiles {
                 start,
                 entries,
                 carries: Vec::new(),
+                scratch,
             },
             order,
         )

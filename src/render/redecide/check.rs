@@ -186,8 +186,7 @@ impl Redecide<'_> {
     fn limit(&self, id: f32) -> [f32; 2] {
         self.limits
             .get(id as usize)
-            .copied()
-            .unwrap_or([0.0, f32::INFINITY])
+            .map_or([0.0, f32::INFINITY], super::unpack)
     }
 
     /// The lanes of `lanes` (bits) whose hit `t` lies outside the trusted distances of its
