@@ -3,7 +3,7 @@
 //! of the per-view work, run alone, in the current rayon pool (`RAYON_NUM_THREADS`):
 //!
 //! - `check`: the f32 range check from the view's eye, primitive by primitive
-//!   (`validate::f32_range_from`, what a one-view run does);
+//!   (`range::f32_range_from`, what a one-view run does);
 //! - `check clusters`: the same check as many views do it (`Views::check`), settling clusters
 //!   of triangles at a time with bounds built once (`scene::range_clusters`; the build's time
 //!   and the share of clusters settled are printed too);
@@ -17,8 +17,8 @@
 //! Usage, printing the median over the views of each stage, ms:
 //!
 //!     RAYON_NUM_THREADS=2 cargo run --release --example setup_phases -- SCENE WxH VIEWS [REPEAT]
+use lanecast::experimental::scene::range::f32_range_from;
 use lanecast::experimental::scene::range_clusters::RangeClusters;
-use lanecast::experimental::scene::validate::f32_range_from;
 use lanecast::experimental::soa::Packed;
 use lanecast::scene::views::orbit;
 use lanecast::{Camera, Method, Options, Renderer, load_scene};

@@ -53,6 +53,10 @@ pub mod scene {
     pub mod validate {
         pub use crate::scene::validate::*;
     }
+    /// The f32 range check: every primitive representable by the f32 kernels from an eye.
+    pub mod range {
+        pub use crate::scene::range::*;
+    }
     /// The f32 range check of many views, settled a cluster of triangles at a time.
     pub mod range_clusters {
         pub use crate::scene::range_clusters::*;

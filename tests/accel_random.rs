@@ -135,7 +135,7 @@ fn with_camera(scene: &Scene, spec: CameraSpec) -> Option<Scene> {
     lanecast::experimental::scene::validate::camera(&spec).ok()?;
     let mut s = scene.clone();
     s.camera = spec;
-    lanecast::experimental::scene::validate::f32_range(&s).ok()?;
+    lanecast::experimental::scene::range::f32_range(&s).ok()?;
     Some(s)
 }
 

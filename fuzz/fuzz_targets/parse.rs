@@ -21,6 +21,6 @@ fuzz_target!(|data: &[u8]| {
                 Shape::Quad(v) => assert!(v.iter().all(|p| p.is_finite())),
             }
         }
-        let _ = lanecast::experimental::scene::validate::f32_range(&scene);
+        let _ = lanecast::experimental::scene::range::f32_range(&scene);
     }
 });

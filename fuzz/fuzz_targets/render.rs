@@ -1,5 +1,5 @@
 //! Parse, then (if the scene is accepted, as `lanecast` itself would: `parse_scene` plus
-//! `validate::f32_range`) render 16x16 with the packet kernel and the f64 scalar oracle.
+//! `range::f32_range`) render 16x16 with the packet kernel and the f64 scalar oracle.
 //! Asserts: no NaN depth from either kernel, and every id mismatch is excused by
 //! `compare` (a tie or within the edge band).
 #![no_main]
@@ -7,7 +7,7 @@
 use lanecast::Camera;
 use lanecast::compare::compare;
 use lanecast::experimental::render::{Kernel, Setup};
-use lanecast::experimental::scene::validate;
+use lanecast::experimental::scene::range;
 use lanecast::scene::parse_scene;
 use libfuzzer_sys::fuzz_target;
 use std::path::Path;
@@ -22,7 +22,7 @@ fuzz_target!(|data: &[u8]| {
         return;
     };
     // Keep each run fast: the fuzzer's scenes are small anyway.
-    if scene.shapes.len() > 64 || validate::f32_range(&scene).is_err() {
+    if scene.shapes.len() > 64 || range::f32_range(&scene).is_err() {
         return;
     }
     let fov = scene.camera.fov_deg.unwrap_or(60.0);

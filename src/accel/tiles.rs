@@ -60,7 +60,7 @@
 //!
 //! Precision assumed: f32 kernels fed by f64 setup (as `soa`), and the f64 kernels, whose
 //! accepted rays and distances lie inside the f32 bounds; the bounds hold for any scene
-//! `scene::validate::f32_range` accepts and any camera `scene::validate::camera` accepts.
+//! `scene::range::f32_range` accepts and any camera `scene::validate::camera` accepts.
 //! Known to cost, not to fail: a primitive crossing the eye's plane is in every tile its region
 //! reaches (correct, slow if there are many); a sliver seen edge-on is in every tile of its
 //! strip; a deep stack of large overlapping primitives fills every list (the BVH culls those

@@ -97,7 +97,7 @@ impl<const N: usize> PolyK<f64, N> {
         // An edge subtending less than `limits::MIN_EDGE_ANGLE` from the eye has no reliable
         // plane: its cross product is rounding noise (or zero), and a wrong or zero normal
         // passes every ray on one side (an endless wedge). Such a polygon is never drawn.
-        // `validate::f32_range` refuses these scenes with a message; this keeps the kernels
+        // `range::f32_range` refuses these scenes with a message; this keeps the kernels
         // safe for any caller of the library.
         let mut n = [DVec3::ZERO; N];
         for (i, e) in n.iter_mut().enumerate() {

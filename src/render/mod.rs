@@ -64,7 +64,7 @@ impl PacketScene {
 
     /// [`PacketScene::new`], written into the buffers of `spare` (another view's of the same
     /// scene) rather than fresh memory where they are rebuilt from the scene: the stores'
-    /// columns ([`Packed::from_scene_in`]) and the tiles' lists ([`Tiles::new_in`], which
+    /// columns ([`Packed::from_scene_in`]) and the tiles' lists (`Tiles::new_in`, which
     /// keeps its working buffers for the next view with `keep`).
     pub fn new_in(
         scene: &crate::scene::Scene,

@@ -57,7 +57,7 @@ impl<'s> Views<'s> {
     }
 
     /// Checks that the f32 kernels can represent every primitive seen from `camera`'s eye
-    /// (`scene::validate::f32_range`, relative to this eye): the error names the first
+    /// (`scene::range::f32_range`, relative to this eye): the error names the first
     /// primitive that cannot be. [`Views::render`] checks this too. The first eye other than
     /// the scene's builds bounds on clusters of primitives, built once, that settle most
     /// clusters of each later view at a time (`scene::range_clusters`); the outcome is the

@@ -44,7 +44,7 @@ fn load_view(v: &ViewSettings, set: &OutputSet) -> Result<(Scene, Camera)> {
     v.camera.apply(&mut scene.camera)?;
     if v.camera.eye.is_some() {
         // the range rule is relative to the eye (kernels work eye-relative): check it again
-        crate::scene::validate::f32_range(&scene)?;
+        crate::scene::range::f32_range(&scene)?;
     }
     let camera = Camera::for_scene(&scene, v.width, v.height, v.fov)?;
     Ok((scene, camera))

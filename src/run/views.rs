@@ -5,7 +5,7 @@
 //! Before anything renders: the views file is parsed and every camera checked (FILE:LINE:COL
 //! errors), every view's output names are made from their patterns and checked against each
 //! other and against every file the run reads, and every view's eye is checked against the f32
-//! range rule (`scene::validate::f32_range`, relative to that eye). A bad view stops the run
+//! range rule (`scene::range::f32_range`, relative to that eye). A bad view stops the run
 //! with nothing written.
 
 use super::render::{check_memory, encode_to_stdout, run_stats, stats_key, write_frame};

@@ -5,14 +5,14 @@
 //! triangles are a mesh's faces (three indices into the vertices; zero-area ones kept, never
 //! hit, and counted in a warning, as in an OBJ or PLY file), quads go through
 //! `validate::quad`, sphere radii through `validate::sphere_radius`, a given camera through
-//! `validate::camera`, and the whole scene through `validate::f32_range`. What a file format
+//! `validate::camera`, and the whole scene through `range::f32_range`. What a file format
 //! rules out by its syntax is checked here: every number finite, every index in range.
 //!
 //! Every error names the array and its 0-based row (`quads row 3: quad is not planar: ...`),
 //! as an [`Error::Usage`].
 
 use super::parse::framing_camera;
-use super::{CameraSpec, Mesh, Scene, Shape, Shapes, obj, validate};
+use super::{CameraSpec, Mesh, Scene, Shape, Shapes, obj, range, validate};
 use crate::error::{Error, Result};
 use crate::limits::MAX_PRIMITIVES;
 use glam::DVec3;
@@ -154,7 +154,7 @@ pub fn scene_from_arrays(
             ("spheres", id - m - quads.len())
         }
     };
-    validate::f32_range(&scene).map_err(|e| match e {
+    range::f32_range(&scene).map_err(|e| match e {
         Error::Input { line, msg, .. } if line >= 1 => {
             let (array, row) = row_of(line - 1);
             at(array, row, msg)

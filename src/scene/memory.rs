@@ -10,7 +10,7 @@
 use super::chunks::{self, BINARY_PROBE};
 use super::mesh::{self, MeshFormat};
 use super::shapes::Mesh;
-use super::{Scene, parse, validate};
+use super::{Scene, parse, range};
 use crate::error::{Error, Result};
 use crate::limits::{MAX_PRIMITIVES, MAX_SCENE_BYTES};
 use std::path::Path;
@@ -95,7 +95,7 @@ pub fn parse_scene_with(
     let files = MeshFiles::Memory(meshes);
     let scene =
         parse::parse_bytes_meshes(bytes, file, MAX_PRIMITIVES, chunk, files, &mut Vec::new())?;
-    validate::f32_range(&scene)?;
+    range::f32_range(&scene)?;
     Ok(scene)
 }
 
@@ -105,7 +105,7 @@ pub fn parse_scene_with(
 /// ([`framing_camera`](crate::experimental::scene::parse::framing_camera)).
 pub fn parse_mesh_bytes(bytes: &[u8], file: &Path) -> Result<Scene> {
     let scene = parse::mesh_scene(file, mesh_from_bytes(bytes, file, MAX_PRIMITIVES)?)?;
-    validate::f32_range(&scene)?;
+    range::f32_range(&scene)?;
     Ok(scene)
 }
 

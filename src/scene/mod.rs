@@ -2,7 +2,8 @@
 //!
 //! A primitive's id is its index in `Scene::shapes`: its 0-based position among the primitive
 //! lines of the file, whatever its type. Parsing (`parse.rs`) turns text into this form;
-//! validation (`validate.rs`) holds the geometric rules and their tolerances.
+//! validation (`validate.rs`) holds the geometric rules and their tolerances, and `range.rs`
+//! the f32 range check of a scene seen from an eye.
 
 mod arrays;
 #[cfg(test)]
@@ -14,6 +15,7 @@ mod number;
 mod obj;
 pub(crate) mod parse;
 mod ply;
+pub(crate) mod range;
 pub(crate) mod range_clusters;
 mod scene_chunk;
 mod shapes;
@@ -31,11 +33,11 @@ use crate::error::Result;
 use std::path::Path;
 
 /// Reads, parses and validates a scene file, meshes included: every rule of the format
-/// (README "Scene format") and the f32 range check of `validate::f32_range`, so a scene this
+/// (README "Scene format") and the f32 range check of `range::f32_range`, so a scene this
 /// accepts is one the command line renders. Errors name the file, line and column.
 pub fn load_scene(path: &Path) -> Result<Scene> {
     let scene = parse::load_scene(path)?;
-    validate::f32_range(&scene)?;
+    range::f32_range(&scene)?;
     Ok(scene)
 }
 
@@ -44,7 +46,7 @@ pub fn load_scene(path: &Path) -> Result<Scene> {
 /// file the load read. The command line refuses an output that names any of them.
 pub fn load_scene_meshes(path: &Path) -> Result<(Scene, Vec<PathBuf>)> {
     let (scene, meshes) = parse::load_scene_meshes(path)?;
-    validate::f32_range(&scene)?;
+    range::f32_range(&scene)?;
     Ok((scene, meshes))
 }
 
@@ -52,7 +54,7 @@ pub fn load_scene_meshes(path: &Path) -> Result<(Scene, Vec<PathBuf>)> {
 /// paths are relative to its folder.
 pub fn parse_scene(text: &str, file: &Path) -> Result<Scene> {
     let scene = parse::parse_scene(text, file)?;
-    validate::f32_range(&scene)?;
+    range::f32_range(&scene)?;
     Ok(scene)
 }
 

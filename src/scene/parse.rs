@@ -371,7 +371,7 @@ const FRAMING_HALF_ANGLE_DEG: f64 = 15.0;
 
 /// An OBJ or PLY file rendered on its own (`lanecast -i mesh.obj`, `-i scan.ply`): its faces as
 /// triangles, in file order, seen by [`framing_camera`]. Shapes carry line 0 (no scene line); range errors name the
-/// face instead (`validate::f32_range`).
+/// face instead (`range::f32_range`).
 fn load_mesh_scene(path: &Path) -> Result<Scene> {
     mesh_scene(path, mesh::load_mesh(path, MAX_PRIMITIVES)?)
 }

@@ -1,10 +1,10 @@
-//! The f32 range check of many views ([`validate::f32_range_from`] for each view's eye) settled
+//! The f32 range check of many views ([`range::f32_range_from`] for each view's eye) settled
 //! a cluster of triangles at a time: [`RangeClusters`] is built once per scene, independent
 //! of any camera, and each view's check then tests one bound per cluster of [`CLUSTER`]
 //! consecutive primitives, going down to the per-primitive rules only for the clusters the
 //! bound cannot settle (those seen nearly edge-on, near the eye's plane, and any cluster that
 //! holds a sphere or a quad). The outcome, and the first primitive an error names, are
-//! [`validate::f32_range_from`]'s: a settled cluster holds no offending primitive.
+//! [`range::f32_range_from`]'s: a settled cluster holds no offending primitive.
 //!
 //! **The bound.** Per cluster, in f64: a bounding sphere (centre `c`, radius `rho`); the cone
 //! of the faces' normal *lines* (axis `a`, half-angle `theta`: every face's computed unit
@@ -40,7 +40,7 @@
 //! curved cluster, and a cluster of unrelated faces (a mesh whose consecutive faces lie far
 //! apart) has a wide cone and a large `rho` and rarely settles.
 
-use super::validate;
+use super::range;
 use super::{Scene, Shape};
 use crate::error::Error;
 use crate::limits::{MAX_EYE_DISTANCE, MIN_EDGE_ANGLE};
@@ -88,11 +88,11 @@ impl RangeClusters {
         RangeClusters { bounds }
     }
 
-    /// [`validate::f32_range_from`]`(scene, eye)`, the same outcome and message, with the
+    /// [`range::f32_range_from`]`(scene, eye)`, the same outcome and message, with the
     /// clusters this bound settles skipped. `scene` is the one these were built from.
     pub fn check(&self, scene: &Scene, eye: DVec3) -> Result<(), Error> {
         debug_assert_eq!(self.bounds.len(), scene.shapes.len().div_ceil(CLUSTER));
-        validate::f32_range_skipping(scene, eye, CLUSTER, |k| {
+        range::f32_range_skipping(scene, eye, CLUSTER, |k| {
             self.bounds[k].is_some_and(|b| b.settles(eye))
         })
     }
@@ -270,7 +270,7 @@ mod tests {
                     for id in k * CLUSTER..((k + 1) * CLUSTER).min(scene.shapes.len()) {
                         let shape = scene.shapes.get(id);
                         assert!(
-                            validate::f32_range_skipping(&one(&shape), eye, 1, |_| false).is_ok(),
+                            range::f32_range_skipping(&one(&shape), eye, 1, |_| false).is_ok(),
                             "case {case}: cluster {k} settled, face {id} fails, eye {eye}"
                         );
                     }
@@ -280,7 +280,7 @@ mod tests {
                     ordinary.1 += 1;
                 }
             }
-            let plain = validate::f32_range_from(&scene, eye).map_err(|e| e.to_string());
+            let plain = range::f32_range_from(&scene, eye).map_err(|e| e.to_string());
             let fast = clusters.check(&scene, eye).map_err(|e| e.to_string());
             assert_eq!(plain, fast, "case {case}");
             refused += usize::from(plain.is_err());
@@ -321,9 +321,7 @@ mod tests {
         let clusters = RangeClusters::new(&scene);
         assert!(clusters.bounds.iter().all(Option::is_none));
         let eye = DVec3::new(0.0, 0.0, 5.0);
-        let plain = validate::f32_range_from(&scene, eye)
-            .unwrap_err()
-            .to_string();
+        let plain = range::f32_range_from(&scene, eye).unwrap_err().to_string();
         let fast = clusters.check(&scene, eye).unwrap_err().to_string();
         assert_eq!(plain, fast);
         assert!(fast.contains("s.sc:3"), "{fast}");

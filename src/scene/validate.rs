@@ -10,9 +10,7 @@
 //! infinity or underflows below the smallest normal f64, e.g. coordinates around 1e200 or
 //! 1e-200) is rejected, so that no NaN or infinity reaches the renderer.
 
-use super::{CameraSpec, Scene, Shape};
-use crate::error::Error;
-use crate::limits::{MAX_EYE_DISTANCE, MIN_EDGE_ANGLE, MIN_RADIUS};
+use super::CameraSpec;
 use glam::DVec3;
 
 /// A triangle (or a corner of a quad) is degenerate when `|AB x AC| <= DEGENERATE_TOL * L^2`,
@@ -37,7 +35,7 @@ pub const PLANAR_TOL: f64 = 1e-6;
 /// 1e-9 rad is far below any deliberate tilt.
 pub const CAMERA_PARALLEL_TOL: f64 = 1e-9;
 
-const VERTEX_NAMES: [&str; 4] = ["A", "B", "C", "D"];
+pub(super) const VERTEX_NAMES: [&str; 4] = ["A", "B", "C", "D"];
 
 /// Is `x` (a squared length, or twice an area squared) usable in f64 arithmetic: finite and at
 /// least the smallest normal f64?
@@ -243,196 +241,6 @@ pub fn camera(c: &CameraSpec) -> Result<(), String> {
     Ok(())
 }
 
-/// Scene-level check that the f32 kernels can represent every primitive seen from this eye.
-///
-/// The kernels compute eye-relative constants in f64 and round them to f32 (`soa`, `kernel`),
-/// so a scene is fine at any absolute position (coordinates of 3e38 with the eye nearby
-/// render), but each primitive must lie within `limits::MAX_EYE_DISTANCE` of the eye, a sphere
-/// radius must be at least `limits::MIN_RADIUS`, and the eye may not be so close to a polygon's
-/// plane (but off it) that the distance underflows f32, and every polygon edge must subtend at
-/// least `limits::MIN_EDGE_ANGLE` from the eye. The first offending primitive is named
-/// by its line. Polygons with an area that underflows f32 are fine: their edge planes are
-/// normalised in f64 before rounding.
-pub fn f32_range(scene: &Scene) -> Result<(), Error> {
-    f32_range_from(scene, scene.camera.eye)
-}
-
-/// [`f32_range`] for a camera at `eye` rather than the scene's own (a view of the scene).
-pub fn f32_range_from(scene: &Scene, eye: DVec3) -> Result<(), Error> {
-    f32_range_skipping(scene, eye, 1 << 12, |_| false)
-}
-
-/// [`f32_range_from`] over pieces of `chunk` consecutive ids, skipping piece `k` (ids `k *
-/// chunk..`) when `settled(k)`: the caller has shown that none of its primitives breaks a rule
-/// (`range_clusters`). The outcome and the primitive an error names are then
-/// [`f32_range_from`]'s.
-pub(crate) fn f32_range_skipping(
-    scene: &Scene,
-    eye: DVec3,
-    chunk: usize,
-    settled: impl Fn(usize) -> bool + Sync,
-) -> Result<(), Error> {
-    // Checked on all threads; `find_first` keeps "the first offending primitive" exact.
-    use crate::par::prelude::*;
-    let first = scene
-        .shapes
-        .par_chunks(0..scene.shapes.len(), chunk)
-        .enumerate()
-        .find_map_first(|(k, (at, shapes))| {
-            if settled(k) {
-                return None;
-            }
-            (shapes.enumerate())
-                .find_map(|(j, shape)| shape_f32(&shape, eye).err().map(|m| (at + j, m)))
-        });
-    match first {
-        // line 0: a mesh rendered alone, whose shapes are its faces
-        Some((i, msg)) if scene.shapes.line(i) == 0 => Err(Error::InputFile {
-            file: scene.source.clone(),
-            msg: format!("face {}: {msg}", i + 1),
-        }),
-        Some((i, msg)) => Err(Error::input(&scene.source, scene.shapes.line(i), 0, msg)),
-        None => Ok(()),
-    }
-}
-
-/// [`f32_range`]'s rules for one shape.
-fn shape_f32(shape: &Shape, eye: DVec3) -> Result<(), String> {
-    // NaN (never expected: inputs are finite) counts as too far.
-    let far = |d: f64| d.is_nan() || d > MAX_EYE_DISTANCE;
-    match shape {
-        Shape::Sphere { center, radius } => {
-            if *radius < MIN_RADIUS {
-                return Err(format!(
-                    "sphere radius {radius:e} is below the smallest supported radius \
-                     {MIN_RADIUS:e} (its square underflows f32)"
-                ));
-            }
-            let d = (*center - eye).length() + radius;
-            if far(d) {
-                return Err(format!(
-                    "sphere reaches {d:.3e} from the camera eye; the limit is \
-                     {MAX_EYE_DISTANCE:e} (f32 arithmetic would overflow)"
-                ));
-            }
-            Ok(())
-        }
-        Shape::Triangle(v) => polygon_f32(v, eye, "triangle"),
-        Shape::Quad(v) => polygon_f32(v, eye, "quad"),
-    }
-}
-
-fn polygon_f32<const N: usize>(v: &[DVec3; N], eye: DVec3, kw: &str) -> Result<(), String> {
-    let rel = v.map(|p| p - eye);
-    if surely_in_range(v, &rel) {
-        return Ok(());
-    }
-    polygon_f32_exact(v, &rel, kw)
-}
-
-/// A cheap test that accepts only polygons [`polygon_f32_exact`] accepts: no square root or
-/// division, each of its three rules checked with a margin far larger than the rounding of
-/// either computation. It runs on every polygon for every eye (the load, and each view of a
-/// many-view run), so most polygons skip the exact test's ten square roots; anything it
-/// cannot settle goes to the exact test, so the outcome (and the first polygon named) is the
-/// exact test's alone.
-///
-/// With `u = 2^-53`, `|x|_1 >= |x|` the 1-norm, `r_k` the eye-relative vertices and `c` the
-/// plane's normal `(B - A) x (C - A)` as the exact test computes it:
-/// - distance: `|r_k|^2 <= (MAX_EYE_DISTANCE / 2)^2`, so `|r_k|`, rounded, is within the limit.
-/// - plane: the exact test's `p = |sum r_k . c/|c|| / N`. A dot product errs by at most
-///   `3u |r|_1 |c|_1` (normalising `c` first adds `2u |r| |c|` per term), so if
-///   `|sum r_k . c| >= 2 MIN_POSITIVE_F32 N |c|_1 + 16u |c|_1 sum |r_k|_1`, then the exact `p`
-///   is at least `MIN_POSITIVE_F32` and, above all, not 0: the exact test goes on to the edges
-///   and passes the plane rule.
-/// - edges: the exact sine is `|a/|a| x b/|b||`; its rounding, and that of `|a x b|` below, are
-///   at most `8u |a| |b|` absolute in `|a x b|` (each component of a cross product errs by
-///   `2u` times its terms' size; normalising adds `3u`). So `|a x b|^2 >= (2 MIN_EDGE_ANGLE +
-///   16u)^2 |a|^2 |b|^2` leaves the exact sine above `MIN_EDGE_ANGLE`.
-///
-/// Where a quantity under- or overflows, or is NaN, a comparison fails (the strict `> 0`
-/// guards reject zeros), and the exact test decides. Tested against the exact test over random
-/// polygons and eyes at every scale the limits allow, the near-plane and near-collinear cases
-/// included (`the_quick_range_test_accepts_only_what_the_exact_one_does`).
-#[inline]
-fn surely_in_range<const N: usize>(v: &[DVec3; N], rel: &[DVec3; N]) -> bool {
-    const U: f64 = f64::EPSILON / 2.0;
-    const FAR2: f64 = (MAX_EYE_DISTANCE / 2.0) * (MAX_EYE_DISTANCE / 2.0);
-    const SIN: f64 = 2.0 * MIN_EDGE_ANGLE + 16.0 * U;
-    let one = |x: DVec3| x.x.abs() + x.y.abs() + x.z.abs();
-    let c = (v[1] - v[0]).cross(v[2] - v[0]);
-    let c1 = one(c);
-    let mut dots = 0.0;
-    let mut size = 0.0;
-    let mut len2 = [0.0; N];
-    for k in 0..N {
-        len2[k] = rel[k].length_squared();
-        if !(len2[k] > 0.0 && len2[k] <= FAR2) {
-            return false;
-        }
-        dots += rel[k].dot(c);
-        size += one(rel[k]);
-    }
-    let plane = 2.0 * f64::from(f32::MIN_POSITIVE) * N as f64 * c1 + 16.0 * U * c1 * size;
-    if !(c1 > 0.0 && dots.abs() >= plane && plane > 0.0) {
-        return false;
-    }
-    (0..N).all(|i| {
-        let j = (i + 1) % N;
-        let cross2 = rel[i].cross(rel[j]).length_squared();
-        let bound = SIN * SIN * len2[i] * len2[j];
-        cross2 > 0.0 && bound > 0.0 && cross2 >= bound
-    })
-}
-
-/// The exact rules of [`polygon_f32`], in the order they are reported.
-fn polygon_f32_exact<const N: usize>(
-    v: &[DVec3; N],
-    rel: &[DVec3; N],
-    kw: &str,
-) -> Result<(), String> {
-    for (k, r) in rel.iter().enumerate() {
-        let d = r.length();
-        if d.is_nan() || d > MAX_EYE_DISTANCE {
-            return Err(format!(
-                "{kw} vertex {} is {d:.3e} from the camera eye; the limit is \
-                 {MAX_EYE_DISTANCE:e} (f32 arithmetic would overflow)",
-                VERTEX_NAMES[k]
-            ));
-        }
-    }
-    // Distance from the eye to the plane, as the kernels measure it (normal from f64 vertices).
-    let normal = (v[1] - v[0]).cross(v[2] - v[0]).normalize_or_zero();
-    let p = rel.iter().map(|r| r.dot(normal)).sum::<f64>().abs() / N as f64;
-    if p == 0.0 {
-        // Seen exactly edge-on: the kernels never draw it.
-        return Ok(());
-    }
-    for i in 0..N {
-        let (a, b) = (
-            rel[i].normalize_or_zero(),
-            rel[(i + 1) % N].normalize_or_zero(),
-        );
-        let sin = a.cross(b).length();
-        if sin.is_nan() || sin < MIN_EDGE_ANGLE {
-            return Err(format!(
-                "{kw} edge {}-{} subtends {sin:.1e} rad seen from the camera eye: too small at \
-                 this distance to resolve (at least {MIN_EDGE_ANGLE:e} rad); move the eye \
-                 closer or drop the {kw}",
-                VERTEX_NAMES[i],
-                VERTEX_NAMES[(i + 1) % N]
-            ));
-        }
-    }
-    if p < f64::from(f32::MIN_POSITIVE) {
-        return Err(format!(
-            "the camera eye is {p:.3e} from the plane of this {kw}: off the plane but too close \
-             to it for f32 arithmetic (move the eye into the plane or away from it)"
-        ));
-    }
-    Ok(())
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -461,77 +269,6 @@ mod tests {
         let o = d(0.37, -1.2, 2.9);
         let q = [(0.0, 0.0), (2.0, 0.1), (1.7, 1.9), (0.2, 1.3)].map(|(x, y)| o + u * x + v * y);
         (q, w)
-    }
-
-    /// `surely_in_range` accepts only what the exact rules accept, over random triangles and
-    /// quads and eyes at scales 1e-15 to 1e15, with eyes pushed near the polygon's plane (down
-    /// to 1e-40 of its size) and near the line of an edge (where the edge subtends less than
-    /// MIN_EDGE_ANGLE), and far away (near MAX_EYE_DISTANCE). It must also accept most
-    /// ordinary polygons, or it would save nothing.
-    #[test]
-    fn the_quick_range_test_accepts_only_what_the_exact_one_does() {
-        let mut rng = crate::test_rng::Rng(0x9E37_79B9_7F4A_7C15);
-        let mut unit = move || rng.unit();
-        let (mut quick, mut ordinary, mut refused) = (0, 0, 0);
-        for case in 0..48_000 {
-            // case 5: the scales where the rounding of a plane distance, u |r|, is about the
-            // smallest f32 (1e-38), with the eye in the plane: the plane rule's margin decides
-            let scale = match case % 6 {
-                5 => 10f64.powf(unit() * 4.0 - 24.0),
-                _ => 10f64.powf(unit() * 30.0 - 15.0),
-            };
-            let centre = DVec3::new(unit(), unit(), unit()) * 10f64.powf(unit() * 10.0) * scale;
-            let mut p = || centre + (DVec3::new(unit(), unit(), unit()) * 2.0 - 1.0) * scale;
-            let tri = [p(), p(), p()];
-            let (a, b, c) = (tri[0], tri[1], tri[2]);
-            let quad = [a, b, b + (c - a) * 0.5 + (c - b) * 0.5, a + (c - b)];
-            let normal = (b - a).cross(c - a).normalize_or_zero();
-            let eye = match case % 6 {
-                // anywhere, from near to far
-                0 => centre + DVec3::new(unit(), unit(), unit()) * scale * 10f64.powf(unit() * 8.0),
-                // near the plane
-                1 => a + (b - a) * unit() * 3.0 + normal * scale * 10f64.powf(-40.0 * unit()),
-                // near the line of an edge, off the plane
-                2 => {
-                    let off = scale * 10f64.powf(-20.0 * unit());
-                    a + (b - a) * (1.5 + unit() * 1e6) + normal * off
-                }
-                // far away
-                3 => {
-                    centre
-                        + DVec3::new(unit(), 1.0, unit()) * MAX_EYE_DISTANCE * (0.4 + unit() * 0.2)
-                }
-                // in the plane, up to rounding
-                5 => a + (b - a) * (unit() * 4.0 - 2.0) + (c - a) * (unit() * 4.0 - 2.0),
-                // ordinary: a few sizes away, well off the plane
-                _ => centre + (normal * 3.0 + DVec3::new(unit(), unit(), unit())) * scale,
-            };
-            let rel = tri.map(|v| v - eye);
-            let exact = polygon_f32_exact(&tri, &rel, "triangle");
-            if surely_in_range(&tri, &rel) {
-                quick += 1;
-                assert!(
-                    exact.is_ok(),
-                    "case {case}: {tri:?} from {eye:?}: {exact:?}"
-                );
-            }
-            if case % 6 == 4 {
-                ordinary += 1;
-            }
-            refused += exact.is_err() as usize;
-            let rel = quad.map(|v| v - eye);
-            if surely_in_range(&quad, &rel) {
-                let exact = polygon_f32_exact(&quad, &rel, "quad");
-                assert!(
-                    exact.is_ok(),
-                    "case {case}: {quad:?} from {eye:?}: {exact:?}"
-                );
-            }
-        }
-        // the exact rules refused some (the near-plane and near-line eyes), and the quick test
-        // settled at least the ordinary cases
-        assert!(refused > 1_000, "{refused}");
-        assert!(quick >= ordinary, "{quick} of {ordinary}");
     }
 
     #[test]

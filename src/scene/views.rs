@@ -102,7 +102,7 @@ pub fn parse_views(text: &str, file: &Path) -> Result<Vec<ViewLine>> {
 /// `e cos + (a x e) sin + a (a . e)(1 - cos)`, in f64. Quarter turns use their exact sine and
 /// cosine (0 and +-1, where `sin_cos` gives 6e-17 for 0): a camera orbiting a flat scene then
 /// lies exactly in its plane at 90 degrees, where the scene is seen edge-on and not drawn,
-/// rather than 1e-16 off it, where the f32 range rule (`validate::f32_range`) refuses edges
+/// rather than 1e-16 off it, where the f32 range rule (`range::f32_range`) refuses edges
 /// that point at the eye.
 pub fn orbit(spec: &CameraSpec, n: usize) -> Vec<CameraSpec> {
     let a = spec.up.normalize();

@@ -329,7 +329,7 @@ fn polygon_regions_hold_every_accepted_ray() {
             Shape::Sphere { .. } => unreachable!(),
         };
         let scene = one_shape(shape, eye, look);
-        if crate::scene::validate::f32_range(&scene).is_err() {
+        if crate::scene::range::f32_range(&scene).is_err() {
             continue;
         }
         let cam = camera(&mut rng, eye, look);
@@ -427,7 +427,7 @@ fn sphere_reach_holds_every_accepted_ray() {
             radius: r,
         };
         let scene = one_shape(shape, eye, look);
-        if crate::scene::validate::f32_range(&scene).is_err() || look == eye {
+        if crate::scene::range::f32_range(&scene).is_err() || look == eye {
             continue;
         }
         let cam = if silhouette {
