@@ -194,7 +194,9 @@ impl PyScene {
     /// `Render` whose arrays are stacked (V, H, W), view v from cameras[v]; every camera must
     /// give the same size.
     /// Each view is rendered by the library into its recycled frame and copied into the
-    /// stacked arrays. The GIL is released for the whole batch.
+    /// stacked arrays. The GIL is released for the whole batch. Each view's setup fills the
+    /// buffers of the view before; the scene keeps one view's buffers, per precision used,
+    /// until it is freed.
     #[pyo3(signature = (cameras, width = None, height = None, precision = "auto", threads = None, zdepth = false, normals = false))]
     #[allow(clippy::too_many_arguments)]
     fn render_views(
