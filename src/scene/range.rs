@@ -27,32 +27,21 @@ pub fn f32_range(scene: &Scene) -> Result<(), Error> {
 
 /// [`f32_range`] for a camera at `eye` rather than the scene's own (a view of the scene).
 pub fn f32_range_from(scene: &Scene, eye: DVec3) -> Result<(), Error> {
-    f32_range_skipping(scene, eye, 1 << 12, |_| false)
-}
-
-/// [`f32_range_from`] over pieces of `chunk` consecutive ids, skipping piece `k` (ids `k *
-/// chunk..`) when `settled(k)`: the caller has shown that none of its primitives breaks a rule
-/// (`range_clusters`). The outcome and the primitive an error names are then
-/// [`f32_range_from`]'s.
-pub(crate) fn f32_range_skipping(
-    scene: &Scene,
-    eye: DVec3,
-    chunk: usize,
-    settled: impl Fn(usize) -> bool + Sync,
-) -> Result<(), Error> {
     // Checked on all threads; `find_first` keeps "the first offending primitive" exact.
     use crate::par::prelude::*;
     let first = scene
         .shapes
-        .par_chunks(0..scene.shapes.len(), chunk)
-        .enumerate()
-        .find_map_first(|(k, (at, shapes))| {
-            if settled(k) {
-                return None;
-            }
+        .par_chunks(0..scene.shapes.len(), 1 << 12)
+        .find_map_first(|(at, shapes)| {
             (shapes.enumerate())
                 .find_map(|(j, shape)| shape_f32(&shape, eye).err().map(|m| (at + j, m)))
         });
+    outcome(scene, first)
+}
+
+/// The check's outcome when `first` is the first offending primitive and its message, if any:
+/// the error names it by its line (or, in a mesh rendered alone, by its face number).
+pub(crate) fn outcome(scene: &Scene, first: Option<(usize, String)>) -> Result<(), Error> {
     match first {
         // line 0: a mesh rendered alone, whose shapes are its faces
         Some((i, msg)) if scene.shapes.line(i) == 0 => Err(Error::InputFile {
@@ -65,7 +54,7 @@ pub(crate) fn f32_range_skipping(
 }
 
 /// [`f32_range`]'s rules for one shape.
-fn shape_f32(shape: &Shape, eye: DVec3) -> Result<(), String> {
+pub(crate) fn shape_f32(shape: &Shape, eye: DVec3) -> Result<(), String> {
     // NaN (never expected: inputs are finite) counts as too far.
     let far = |d: f64| d.is_nan() || d > MAX_EYE_DISTANCE;
     match shape {
