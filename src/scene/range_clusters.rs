@@ -134,14 +134,22 @@ impl RangeClusters {
         debug_assert_eq!(self.ids.len(), scene.shapes.len());
         let first = (self.bounds.par_iter().zip(self.ids.par_chunks(CLUSTER)))
             .filter(|(b, _)| !b.is_some_and(|b| b.settles(eye)))
-            .flat_map_iter(|(_, ids)| ids.iter())
-            .filter_map(|&id| {
-                let shape = scene.shapes.get(id as usize);
-                range::shape_f32(&shape, eye)
-                    .err()
-                    .map(|m| (id as usize, m))
+            .flat_map_iter(|(_, ids)| {
+                ids.iter().filter_map(move |&id| {
+                    let shape = scene.shapes.get(id as usize);
+                    range::shape_f32(&shape, eye)
+                        .err()
+                        .map(|m| (id as usize, m))
+                })
             })
-            .min_by_key(|(id, _)| *id);
+            .map(Some)
+            .reduce(
+                || None,
+                |a, b| match (a, b) {
+                    (Some(a), Some(b)) => Some(if a.0 <= b.0 { a } else { b }),
+                    (a, b) => a.or(b),
+                },
+            );
         range::outcome(scene, first)
     }
 
@@ -172,7 +180,7 @@ fn morton_order(scene: &Scene, ids: Vec<u32>) -> Vec<u32> {
         .collect();
     let far = (DVec3::INFINITY, DVec3::NEG_INFINITY);
     let (lo, hi) = (centres.par_iter())
-        .fold_with(far, |(lo, hi), c| (lo.min(*c), hi.max(*c)))
+        .map(|c| (*c, *c))
         .reduce(|| far, |a, b| (a.0.min(b.0), a.1.max(b.1)));
     let cells = DVec3::splat(f64::from((1u32 << 21) - 1));
     let scale = cells / (hi - lo).max(DVec3::splat(1e-300));
