@@ -43,18 +43,24 @@ impl Spheres {
         }
     }
 
+    /// The f32 columns (all but `inside`).
+    fn floats(&mut self) -> [&mut Vec<f32>; 6] {
+        let Spheres {
+            ocx,
+            ocy,
+            ocz,
+            r2,
+            c,
+            id,
+            ..
+        } = self;
+        [ocx, ocy, ocz, r2, c, id]
+    }
+
     /// Every column emptied, its allocation kept.
     fn clear(&mut self) {
-        let cols = [
-            &mut self.ocx,
-            &mut self.ocy,
-            &mut self.ocz,
-            &mut self.r2,
-            &mut self.c,
-        ];
-        cols.into_iter().for_each(Vec::clear);
+        self.floats().into_iter().for_each(Vec::clear);
         self.inside.clear();
-        self.id.clear();
     }
 
     /// Number of spheres.
@@ -80,17 +86,10 @@ impl Spheres {
 
     /// Room for exactly `n` more spheres in every column.
     fn reserve(&mut self, n: usize) {
-        for col in [
-            &mut self.ocx,
-            &mut self.ocy,
-            &mut self.ocz,
-            &mut self.r2,
-            &mut self.c,
-        ] {
-            col.reserve_exact(n);
-        }
+        self.floats()
+            .into_iter()
+            .for_each(|col| col.reserve_exact(n));
         self.inside.reserve_exact(n);
-        self.id.reserve_exact(n);
     }
 
     /// Appends every sphere of `other`.
@@ -107,15 +106,7 @@ impl Spheres {
     /// Rearranged to `order` ([`Order`]), or kept with `None`.
     fn permute(&mut self, order: Option<&Vec<u32>>) {
         let Some(order) = order else { return };
-        let cols = [
-            &mut self.ocx,
-            &mut self.ocy,
-            &mut self.ocz,
-            &mut self.r2,
-            &mut self.c,
-            &mut self.id,
-        ];
-        gather(cols, order);
+        gather(self.floats(), order);
         gather([&mut self.inside], order);
     }
 
@@ -168,10 +159,15 @@ impl<const N: usize> Polygons<N> {
         }
     }
 
+    /// Every column: the edge normals', the plane normal's, `p` and `id`.
+    fn columns(&mut self) -> impl Iterator<Item = &mut Vec<f32>> {
+        let cols = self.n.iter_mut().flatten().chain(&mut self.nrm);
+        cols.chain([&mut self.p, &mut self.id])
+    }
+
     /// Every column emptied, its allocation kept.
     fn clear(&mut self) {
-        let cols = self.n.iter_mut().flatten().chain(&mut self.nrm);
-        cols.chain([&mut self.p, &mut self.id]).for_each(Vec::clear);
+        self.columns().for_each(Vec::clear);
     }
 
     /// Number of polygons.
@@ -196,10 +192,7 @@ impl<const N: usize> Polygons<N> {
 
     /// Room for exactly `n` more polygons in every column.
     fn reserve(&mut self, n: usize) {
-        let cols = self.n.iter_mut().flatten().chain(&mut self.nrm);
-        for col in cols.chain([&mut self.p, &mut self.id]) {
-            col.reserve_exact(n);
-        }
+        self.columns().for_each(|col| col.reserve_exact(n));
     }
 
     /// Appends every polygon of `other`.
@@ -215,8 +208,7 @@ impl<const N: usize> Polygons<N> {
     /// Rearranged to `order` ([`Order`]), or kept with `None`.
     fn permute(&mut self, order: Option<&Vec<u32>>) {
         let Some(order) = order else { return };
-        let cols = self.n.iter_mut().flatten().chain(&mut self.nrm);
-        gather(cols.chain([&mut self.p, &mut self.id]), order);
+        gather(self.columns(), order);
     }
 
     /// Polygon `i`'s constants, gathered from the columns.
