@@ -24,6 +24,7 @@
 
 pub(crate) mod build;
 pub(crate) mod bvh;
+pub(crate) mod clusters;
 pub(crate) mod footprint;
 pub(crate) mod reach;
 pub(crate) mod tiles;

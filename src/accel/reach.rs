@@ -102,7 +102,7 @@ pub(crate) struct View {
     /// `E`: how far outside an edge plane (radians) an accepted ray's exact direction may lie.
     pub(crate) edge: f64,
     /// `e_c`: how much larger `fl(N . d32)` may be than `N . d` for the exact ray `d`.
-    cosine: f64,
+    pub(crate) cosine: f64,
     /// `a`: the angle between a pixel's f32 ray and its exact ray.
     pub(crate) ray: f64,
 }

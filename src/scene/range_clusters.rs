@@ -66,6 +66,42 @@ struct Bound {
     sin_theta: f64,
     shortest: f64,
     delta: f64,
+    /// The largest over the faces of the farthest vertex's distance from the incentre over
+    /// the inradius (at least 2, for an equilateral face; large for a sliver): how far a
+    /// face widened by a distance `w` on every edge reaches, `quality * w` at most.
+    quality: f64,
+    /// A box holding every vertex, in the frame of [`frame`]`(axis)` about `centre`: its
+    /// least and greatest coordinates (widened by `1e-9 rho` for their rounding).
+    lo: DVec3,
+    hi: DVec3,
+}
+
+/// The orthonormal frame of a cluster's box: two directions across `axis`, then `axis`.
+pub(crate) fn frame(axis: DVec3) -> [DVec3; 3] {
+    let (b1, b2) = axis.any_orthonormal_pair();
+    [b1, b2, axis]
+}
+
+/// What a view needs of one cluster to bound where its faces can be hit
+/// (`accel::clusters`): its sphere, its faces' shape quality and shortest edge, and how far
+/// the eye is from the faces' planes.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Gap {
+    /// A box holding every vertex: coordinates `lo` to `hi` about `centre` along
+    /// [`frame`]`(axis)`.
+    pub(crate) centre: DVec3,
+    pub(crate) axis: DVec3,
+    pub(crate) lo: DVec3,
+    pub(crate) hi: DVec3,
+    /// `Bound::quality`, the shortest edge, and `delta`: the angle between each face's
+    /// computed unit normal and its exact one (module comment).
+    pub(crate) quality: f64,
+    pub(crate) shortest: f64,
+    pub(crate) delta: f64,
+    /// A lower bound on the eye's distance from every face's exact plane (> 0), and an upper
+    /// bound on its distance from every vertex.
+    pub(crate) h: f64,
+    pub(crate) reach: f64,
 }
 
 /// The clusters of one scene: its primitives' ids in space order, [`CLUSTER`] at a time, and
@@ -153,10 +189,37 @@ impl RangeClusters {
         range::outcome(scene, first)
     }
 
+    /// How many clusters there are.
+    pub(crate) fn len(&self) -> usize {
+        self.bounds.len()
+    }
+
+    /// How many primitives the clusters hold (the scene's).
+    pub(crate) fn ids_len(&self) -> usize {
+        self.ids.len()
+    }
+
     /// The ids of cluster `k`.
-    #[cfg(test)]
-    fn cluster(&self, k: usize) -> &[u32] {
+    pub(crate) fn cluster(&self, k: usize) -> &[u32] {
         &self.ids[k * CLUSTER..((k + 1) * CLUSTER).min(self.ids.len())]
+    }
+
+    /// Cluster `k` seen from `eye`, `None` when its bound does not keep the eye off every
+    /// face's plane (or it has no bound: spheres, quads, faces too thin).
+    pub(crate) fn gap(&self, k: usize, eye: DVec3) -> Option<Gap> {
+        let b = self.bounds[k].as_ref()?;
+        let (h, reach) = b.plane_gap(eye)?;
+        Some(Gap {
+            centre: b.centre,
+            axis: b.axis,
+            lo: b.lo,
+            hi: b.hi,
+            quality: b.quality,
+            shortest: b.shortest,
+            delta: b.delta,
+            h,
+            reach,
+        })
     }
 
     /// How many clusters the bound settles from `eye`, and how many there are.
@@ -168,31 +231,72 @@ impl RangeClusters {
     }
 }
 
-/// `ids` sorted along a Morton curve through their primitives' centroids, ties by id.
+/// A triangle's farthest vertex from its incentre over its inradius (`Bound::quality`), with
+/// a relative 1e-6 over its rounding; infinite (or NaN) for a collapsed face.
+fn face_quality(v: &[DVec3; 3]) -> f64 {
+    // sides opposite each vertex; the incentre weights each vertex by its opposite side
+    let side = [
+        (v[1] - v[2]).length(),
+        (v[2] - v[0]).length(),
+        (v[0] - v[1]).length(),
+    ];
+    let perimeter = side[0] + side[1] + side[2];
+    let incentre = (v[0] * side[0] + v[1] * side[1] + v[2] * side[2]) / perimeter;
+    // inradius = 2 area / perimeter = |cross| / perimeter
+    let r = (v[1] - v[0]).cross(v[2] - v[0]).length() / perimeter;
+    let far = v
+        .iter()
+        .map(|p| (*p - incentre).length())
+        .fold(0.0, f64::max);
+    far / r * (1.0 + 1e-6)
+}
+
+/// `ids` sorted by the axis their face's normal line lies nearest to (x, y or z: the lines
+/// of one class lie within 54.7 degrees of their axis, so a cluster of one class has a cone
+/// of normal lines narrower than a right angle), then along a Morton curve through their
+/// primitives' centroids, ties by id.
 fn morton_order(scene: &Scene, ids: Vec<u32>) -> Vec<u32> {
-    let centroid = |s: Shape| match s {
-        Shape::Sphere { center, .. } => center,
-        Shape::Triangle(v) => (v[0] + v[1] + v[2]) / 3.0,
-        Shape::Quad(v) => (v[0] + v[1] + v[2] + v[3]) / 4.0,
+    let key = |s: Shape| {
+        let class = |n: DVec3| {
+            let a = n.abs();
+            if a.x >= a.y && a.x >= a.z {
+                0
+            } else if a.y >= a.z {
+                1
+            } else {
+                2
+            }
+        };
+        match s {
+            Shape::Sphere { center, .. } => (3u8, center),
+            Shape::Triangle(v) => (
+                class((v[1] - v[0]).cross(v[2] - v[0])),
+                (v[0] + v[1] + v[2]) / 3.0,
+            ),
+            Shape::Quad(v) => (
+                class((v[2] - v[0]).cross(v[3] - v[1])),
+                (v[0] + v[1] + v[2] + v[3]) / 4.0,
+            ),
+        }
     };
-    let centres: Vec<DVec3> = (ids.par_iter())
-        .map(|&id| centroid(scene.shapes.get(id as usize)))
-        .collect();
+    let (classes, centres): (Vec<u8>, Vec<DVec3>) = (ids.par_iter())
+        .map(|&id| key(scene.shapes.get(id as usize)))
+        .unzip();
     let far = (DVec3::INFINITY, DVec3::NEG_INFINITY);
     let (lo, hi) = (centres.par_iter())
         .map(|c| (*c, *c))
         .reduce(|| far, |a, b| (a.0.min(b.0), a.1.max(b.1)));
     let cells = DVec3::splat(f64::from((1u32 << 21) - 1));
     let scale = cells / (hi - lo).max(DVec3::splat(1e-300));
-    let mut keyed: Vec<(u64, u32)> = (centres.par_iter().zip(&ids))
-        .map(|(c, &id)| {
+    let mut keyed: Vec<(u8, u64, u32)> = (centres.par_iter().zip(&classes).zip(&ids))
+        .map(|((c, &class), &id)| {
             // (finite in a validated scene; a non-finite cell saturates, never panics)
             let cell = ((*c - lo) * scale).to_array().map(|x| x as u32);
-            (morton(cell), id)
+            (class, morton(cell), id)
         })
         .collect();
     keyed.par_sort_unstable();
-    keyed.into_iter().map(|(_, id)| id).collect()
+    keyed.into_iter().map(|(.., id)| id).collect()
 }
 
 /// The Morton code of a cell: the bits of its three 21-bit coordinates interleaved.
@@ -217,8 +321,16 @@ impl Bound {
         let (mut lo, mut hi) = (first[0], first[0]);
         let mut shortest = f64::INFINITY;
         let mut delta = 0f64;
+        let mut quality = 0f64;
         let mut normals = Vec::with_capacity(tris.len());
         for v in tris {
+            // (a NaN, a collapsed face, counts as infinite: no view bounds the cluster)
+            let q = face_quality(v);
+            quality = if q.is_nan() {
+                f64::INFINITY
+            } else {
+                quality.max(q)
+            };
             for k in 0..3 {
                 lo = lo.min(v[k]);
                 hi = hi.max(v[k]);
@@ -255,6 +367,15 @@ impl Bound {
             .fold(1.0, f64::min);
         // (1e-9 rad over the acos's and the dot products' rounding)
         let theta = cos_min.min(1.0).acos() + 1e-9;
+        let f = frame(axis);
+        let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+        for p in tris.iter().flatten() {
+            let q = *p - centre;
+            let x = DVec3::new(q.dot(f[0]), q.dot(f[1]), q.dot(f[2]));
+            (lo, hi) = (lo.min(x), hi.max(x));
+        }
+        let pad = DVec3::splat(1e-9 * rho);
+        let (lo, hi) = (lo - pad, hi + pad);
         let bound = Bound {
             centre,
             rho,
@@ -263,8 +384,11 @@ impl Bound {
             sin_theta: theta.sin(),
             shortest: shortest * (1.0 - 1e-9),
             delta,
+            quality,
+            lo,
+            hi,
         };
-        let finite = [centre, axis].iter().all(|v| v.is_finite())
+        let finite = [centre, axis, lo, hi].iter().all(|v| v.is_finite())
             && [rho, shortest, delta].iter().all(|x| x.is_finite());
         (finite && shortest > 0.0 && axis != DVec3::ZERO && theta < std::f64::consts::FRAC_PI_2)
             .then_some(bound)
@@ -273,23 +397,33 @@ impl Bound {
     /// True when every face of the cluster passes the exact rules from `eye` (module comment).
     #[inline]
     fn settles(&self, eye: DVec3) -> bool {
+        self.plane_gap(eye).is_some_and(|(h, reach)| {
+            h >= 2.0 * f64::from(f32::MIN_POSITIVE) + 1e-10 * reach
+                && self.shortest * h >= 2.0 * MIN_EDGE_ANGLE * reach * reach
+        })
+    }
+
+    /// `(h, reach)` of the module comment from `eye`: every face's exact plane is at least `h`
+    /// from the eye, every vertex at most `reach`; `None` unless `h > 0` and `reach` is within
+    /// the distance rule.
+    #[inline]
+    fn plane_gap(&self, eye: DVec3) -> Option<(f64, f64)> {
         let e = eye - self.centre;
         let l = e.length();
         let reach = l + self.rho;
         if reach.is_nan() || reach > MAX_EYE_DISTANCE / 2.0 || l == 0.0 {
-            return false;
+            return None;
         }
         let cos_phi = (e.dot(self.axis).abs() / l).min(1.0);
         let sin_phi = (1.0 - cos_phi * cos_phi).max(0.0).sqrt();
         let cos = cos_phi * self.cos_theta - sin_phi * self.sin_theta;
         let h = l * cos - self.rho - reach * (self.delta + 1e-12);
-        h >= 2.0 * f64::from(f32::MIN_POSITIVE) + 1e-10 * reach
-            && self.shortest * h >= 2.0 * MIN_EDGE_ANGLE * reach * reach
+        (h > 0.0).then_some((h, reach))
     }
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::scene::{Mesh, Shapes};
     use crate::test_rng::Rng;
@@ -297,7 +431,7 @@ mod tests {
 
     /// A random bumpy sheet of `n` x `n` quads split in two triangles, around `centre`, each
     /// of its cells `size` wide, faces in rows (consecutive faces are neighbours).
-    fn sheet(rng: &mut Rng, n: usize, size: f64, centre: DVec3) -> Mesh {
+    pub(crate) fn sheet(rng: &mut Rng, n: usize, size: f64, centre: DVec3) -> Mesh {
         let mut vertices = Vec::new();
         let bump = rng.log(-6.0, 0.0);
         for i in 0..=n {
