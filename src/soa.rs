@@ -240,3 +240,59 @@ impl Records<f64> for SceneRecords<'_> {
 
 mod columns;
 pub use columns::{Packed, Polygons, Spheres};
+
+/// A set of primitive ids, one bit each: the primitives a view leaves out of its stores
+/// (`render::cull`: those it has shown it cannot see).
+#[derive(Debug, Clone, Default)]
+pub struct IdSet {
+    bits: Vec<u64>,
+}
+
+impl IdSet {
+    /// The empty set over ids `0..n`, in `spare`'s buffer.
+    pub fn empty_in(n: usize, mut spare: IdSet) -> IdSet {
+        spare.bits.clear();
+        spare.bits.resize(n.div_ceil(64), 0);
+        spare
+    }
+
+    /// The set of every id `0..n`, in `spare`'s buffer.
+    pub fn full_in(n: usize, spare: IdSet) -> IdSet {
+        let mut set = IdSet::empty_in(n, spare);
+        set.bits.fill(u64::MAX);
+        if !n.is_multiple_of(64) {
+            *set.bits.last_mut().expect("n > 0") = (1 << (n % 64)) - 1;
+        }
+        set
+    }
+
+    /// Removes `id`.
+    #[inline]
+    pub fn remove(&mut self, id: usize) {
+        self.bits[id / 64] &= !(1 << (id % 64));
+    }
+
+    /// Adds `id` (below the `n` the set was made for).
+    #[inline]
+    pub fn insert(&mut self, id: usize) {
+        self.bits[id / 64] |= 1 << (id % 64);
+    }
+
+    /// Whether `id` is in the set.
+    #[inline]
+    pub fn contains(&self, id: usize) -> bool {
+        self.bits
+            .get(id / 64)
+            .is_some_and(|w| w >> (id % 64) & 1 == 1)
+    }
+
+    /// How many ids the set holds.
+    pub fn len(&self) -> usize {
+        self.bits.iter().map(|w| w.count_ones() as usize).sum()
+    }
+
+    /// Whether the set is empty.
+    pub fn is_empty(&self) -> bool {
+        self.bits.iter().all(|&w| w == 0)
+    }
+}

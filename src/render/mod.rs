@@ -9,6 +9,7 @@
 //! ([`Setup`], [`PacketScene`], [`render_packet_blocks`]) are public for benchmarks and
 //! experiments that time one kernel alone.
 
+mod cull;
 pub mod kits;
 pub mod method;
 pub mod redecide;
@@ -21,7 +22,7 @@ pub use crate::frame::Frame;
 pub use method::Method;
 pub use renderer::{Options, Renderer};
 pub use setup::{Kernel, Setup, Structure, prepare_f64};
-pub use views::Views;
+pub use views::{Rendered, Views};
 
 use crate::accel::bvh::{trace_bvh_x1, trace_bvh_x8};
 use crate::accel::tiles::{PacketLists, TILE_H, TILE_W};
@@ -32,7 +33,7 @@ use crate::kernel::scalar::trace_x1;
 use crate::kernel::{Hit8, LANES};
 use crate::par::prelude::*;
 use crate::real::Real;
-use crate::soa::{Packed, Prepared};
+use crate::soa::{IdSet, Packed, Prepared};
 use redecide::Redecide;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -59,7 +60,7 @@ impl PacketScene {
         camera: &crate::camera::Camera,
         accel: Accel,
     ) -> PacketScene {
-        PacketScene::new_in(scene, camera, accel, PacketScene::default(), false)
+        PacketScene::new_in(scene, camera, accel, PacketScene::default(), false, None)
     }
 
     /// [`PacketScene::new`], written into the buffers of `spare` (another view's of the same
@@ -72,6 +73,7 @@ impl PacketScene {
         accel: Accel,
         spare: PacketScene,
         keep: bool,
+        left_out: Option<&IdSet>,
     ) -> PacketScene {
         let eye = camera.eye;
         let PacketScene {
@@ -90,7 +92,7 @@ impl PacketScene {
                 }
             }
             Accel::Tiles => {
-                let mut packed = Packed::from_scene_in(scene, eye, spare_packed);
+                let mut packed = Packed::from_scene_in(scene, eye, spare_packed, left_out);
                 let spare_tiles = spare_tiles.unwrap_or_default();
                 let (tiles, order) = Tiles::new_in(scene, &packed, camera, spare_tiles, keep);
                 packed.permute(&order);
@@ -101,7 +103,7 @@ impl PacketScene {
                 }
             }
             _ => PacketScene {
-                packed: Packed::from_scene_in(scene, eye, spare_packed),
+                packed: Packed::from_scene_in(scene, eye, spare_packed, left_out),
                 bvh: None,
                 tiles: None,
             },

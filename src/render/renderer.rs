@@ -7,6 +7,7 @@ use super::redecide::Redecide;
 use super::{Frame, Kernel, PacketScene, Setup, f32_depth, packet_blocks, strip_count};
 use crate::accel::Accel;
 use crate::kernel::packet::{BLOCK_H, BLOCK_W};
+use crate::soa::IdSet;
 use std::sync::Mutex;
 use std::sync::atomic::AtomicUsize;
 
@@ -96,7 +97,7 @@ impl<'s> Renderer<'s> {
         camera: &crate::camera::Camera,
         options: &Options,
     ) -> crate::Result<Renderer<'s>> {
-        Renderer::with_spare(scene, camera, options, Spare::default())
+        Renderer::with_spare(scene, camera, options, Spare::default(), None)
     }
 
     /// [`Renderer::new`], filling `spare`'s buffers (another renderer's of the same scene,
@@ -106,11 +107,18 @@ impl<'s> Renderer<'s> {
         camera: &crate::camera::Camera,
         options: &Options,
         spare: Spare,
+        left_out: Option<&IdSet>,
     ) -> crate::Result<Renderer<'s>> {
         options.check()?;
         let job = match (options.method, options.kernel) {
             (Method::Auto, Kernel::Packet) => {
-                return Ok(Renderer::auto_in(scene, camera, options.accel, spare));
+                return Ok(Renderer::auto_in(
+                    scene,
+                    camera,
+                    options.accel,
+                    spare,
+                    left_out,
+                ));
             }
             (Method::Default | Method::Auto, kernel) => Job::Setup(
                 Box::new(Setup::with_accel_in(
@@ -120,6 +128,7 @@ impl<'s> Renderer<'s> {
                     camera,
                     spare.scene,
                     spare.keep,
+                    left_out,
                 )),
                 None,
             ),
@@ -161,7 +170,7 @@ impl<'s> Renderer<'s> {
         camera: &crate::camera::Camera,
         accel: Accel,
     ) -> Renderer<'s> {
-        Renderer::auto_in(scene, camera, accel, Spare::default())
+        Renderer::auto_in(scene, camera, accel, Spare::default(), None)
     }
 
     /// [`Renderer::auto`], written into `spare`'s buffers ([`PacketScene::new_in`],
@@ -171,8 +180,9 @@ impl<'s> Renderer<'s> {
         camera: &crate::camera::Camera,
         accel: Accel,
         spare: Spare,
+        left_out: Option<&IdSet>,
     ) -> Renderer<'s> {
-        let mut p = PacketScene::new_in(scene, camera, accel, spare.scene, spare.keep);
+        let mut p = PacketScene::new_in(scene, camera, accel, spare.scene, spare.keep, left_out);
         let mut redecide = Redecide::new_in(scene, camera, &p.packed, spare.redecide);
         if let Some(tiles) = &mut p.tiles {
             redecide.attach_to(tiles, &p.packed, camera);

@@ -6,7 +6,7 @@ use super::{Frame, PacketScene, f32_depth, render_packet_blocks, render_scalar_c
 use crate::accel::{Accel, Bvh, Tiles};
 use crate::camera::RayTables;
 use crate::kernel::packet::{BLOCK_H, BLOCK_W};
-use crate::soa::{Packed, Prepared};
+use crate::soa::{IdSet, Packed, Prepared};
 use std::sync::atomic::AtomicUsize;
 
 /// The acceleration structure the scalar kernels and the f64x4 method trace through, built
@@ -97,7 +97,15 @@ impl Setup {
         scene: &crate::scene::Scene,
         camera: &crate::camera::Camera,
     ) -> Setup {
-        Setup::with_accel_in(kernel, accel, scene, camera, PacketScene::default(), false)
+        Setup::with_accel_in(
+            kernel,
+            accel,
+            scene,
+            camera,
+            PacketScene::default(),
+            false,
+            None,
+        )
     }
 
     /// [`Setup::with_accel`], the packet kernel's buffers written into `spare`'s
@@ -109,10 +117,13 @@ impl Setup {
         camera: &crate::camera::Camera,
         spare: PacketScene,
         keep: bool,
+        left_out: Option<&IdSet>,
     ) -> Setup {
         match kernel {
             Kernel::Packet => Setup::Packet(
-                Box::new(PacketScene::new_in(scene, camera, accel, spare, keep)),
+                Box::new(PacketScene::new_in(
+                    scene, camera, accel, spare, keep, left_out,
+                )),
                 camera.tables(BLOCK_W as u32, BLOCK_H as u32),
             ),
             Kernel::ScalarF32 => {

@@ -2,7 +2,7 @@
 //! constant, one store per type, built straight from the scene on all threads and rearranged
 //! as an acceleration structure asks (`super::Order`).
 
-use super::{Group, Order, Prepared, gather};
+use super::{Group, IdSet, Order, Prepared, gather};
 use crate::kernel::polygon::{PolyK, QuadK, TriangleK};
 use crate::kernel::sphere::SphereK;
 use crate::kernel::triangle_setup::triangles_x4;
@@ -284,20 +284,29 @@ impl Packed {
     /// `SphereK::new`/`PolyK` constructors and f32 rounding as [`Prepared::new`] and
     /// [`Packed::new`], so the columns are identical), then joined in file order.
     pub fn from_scene(scene: &Scene, eye: DVec3) -> Packed {
-        Packed::from_scene_in(scene, eye, Packed::default())
+        Packed::from_scene_in(scene, eye, Packed::default(), None)
     }
 
     /// [`Packed::from_scene`] written into `out`'s columns, emptied first: their allocations
     /// are kept, so stores rebuilt for another eye of the same scene (a view of many) fill
     /// memory already in use rather than fresh pages. The columns are those `from_scene` gives.
-    pub fn from_scene_in(scene: &Scene, eye: DVec3, mut out: Packed) -> Packed {
+    /// The primitives of `left_out` are not stored.
+    pub fn from_scene_in(
+        scene: &Scene,
+        eye: DVec3,
+        mut out: Packed,
+        left_out: Option<&IdSet>,
+    ) -> Packed {
         const CHUNK: usize = 1 << 14;
         // Batches of a few chunks per thread: the parts of one batch are joined (and freed)
         // before the next is prepared, so the stores exist about once at any time, not twice.
         // The columns are allocated once, for every shape of their type (edge-on polygons,
         // left out, are rare), so they never move or grow.
         let batch_len = CHUNK * (4 * crate::par::current_num_threads()).max(16);
+        // (the primitives left out need no room)
+        let most = scene.shapes.len() - left_out.map_or(0, IdSet::len);
         let (spheres, triangles, quads) = scene.counts();
+        let (spheres, triangles, quads) = (spheres.min(most), triangles.min(most), quads.min(most));
         out.spheres.clear();
         out.triangles.clear();
         out.quads.clear();
@@ -313,6 +322,9 @@ impl Packed {
                     // others one by one; each store keeps its shapes' order
                     let mut four = Four::default();
                     for (j, shape) in shapes.enumerate() {
+                        if left_out.is_some_and(|s| s.contains(first + j)) {
+                            continue;
+                        }
                         let id = (first + j) as f32;
                         match shape {
                             Shape::Triangle(v) => four.add(v, id, &mut part.triangles, eye),
@@ -351,6 +363,18 @@ impl Packed {
                 }
             }
         }
+    }
+
+    /// Every column's memory beyond its length given back (the next view's columns grow
+    /// again where they need to).
+    pub(crate) fn shrink_to_fit(&mut self) {
+        self.spheres
+            .floats()
+            .into_iter()
+            .for_each(Vec::shrink_to_fit);
+        self.spheres.inside.shrink_to_fit();
+        self.triangles.columns().for_each(Vec::shrink_to_fit);
+        self.quads.columns().for_each(Vec::shrink_to_fit);
     }
 
     /// Rearranged to `order`.
