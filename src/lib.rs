@@ -127,7 +127,7 @@ pub use accel::Accel;
 pub use camera::{Camera, DEFAULT_FOV};
 pub use error::{Error, Result};
 pub use frame::Frame;
-pub use render::{Kernel, Method, Options, Renderer, Views};
+pub use render::{Kernel, Method, Options, Rendered, Renderer, Views};
 pub use scene::{CameraSpec, Scene, load_scene, parse_scene};
 pub use shade::{ColorMode, Variation, shade};
 

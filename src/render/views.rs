@@ -7,14 +7,18 @@
 //! renders it: ids and depths are bit-identical to `lanecast -i SCENE` with that camera, at any
 //! thread count (tests/views.rs). What depends on the camera (the eye-relative primitive
 //! constants, the tiles' bins) is built per view; what does not (the scene, its validation, the
-//! range check's cluster bounds) is done once.
+//! range check's cluster bounds) is done once. From the second view on, a view leaves out the
+//! clusters of triangles it proves it cannot see (`render::cull`).
 
+use super::cull::{self, Plan};
 use super::renderer::Spare;
 use super::{Frame, Options, Renderer};
+use crate::accel::Accel;
 use crate::camera::Camera;
 use crate::error::Result;
 use crate::scene::Scene;
 use crate::scene::range_clusters::RangeClusters;
+use crate::soa::IdSet;
 use std::sync::{Mutex, OnceLock};
 
 /// A scene prepared for rendering from many cameras. Borrows the scene: `--precision auto`
@@ -31,6 +35,41 @@ pub struct Views<'s> {
     /// The buffers the next view fills: the last frame handed back ([`Views::recycle`]) and
     /// those of the last renderer handed back ([`Views::give_back`]).
     spare: Mutex<Spare>,
+    /// What the culling keeps between views: the ids the last view showed, the buffers of
+    /// the renders of clusters that failed their check, and spare id sets.
+    cull: Mutex<CullState>,
+}
+
+#[derive(Default)]
+struct CullState {
+    last: Option<IdSet>,
+    touch: Spare,
+    sets: [IdSet; 2],
+}
+
+/// One view rendered by [`Views::render_marking`]: its frame, the pixels whose f32 hit was
+/// decided again in f64, and what it took.
+#[derive(Debug)]
+pub struct Rendered {
+    /// The view's ids and depths.
+    pub frame: Frame<f32>,
+    /// The pixels `--precision auto` decided again in f64 (row-major indices, ascending).
+    pub redecided: Vec<usize>,
+    /// Seconds of setup (stores, tiles; the culling's plan and checks) and of render.
+    pub setup_s: f64,
+    /// Seconds of rendering (and merging a second render in, where one was needed).
+    pub render_s: f64,
+    /// The acceleration used.
+    pub accel: Accel,
+    /// Whether the render spread over the current pool's threads.
+    pub parallel: bool,
+    /// Whether f32 hits that cannot be trusted were decided again in f64.
+    pub redecides: bool,
+    /// Primitives the view left out (clusters off screen, and clusters proven hidden).
+    pub left_out: usize,
+    /// Renders the view took: 1; 2 when clusters left out on trial were not hidden and were
+    /// rendered alone and merged in; 3 when that merge fell back to a render of all.
+    pub renders: usize,
 }
 
 impl<'s> Views<'s> {
@@ -43,6 +82,7 @@ impl<'s> Views<'s> {
             options: *options,
             range: OnceLock::new(),
             spare: Mutex::new(Spare::default()),
+            cull: Mutex::new(CullState::default()),
         })
     }
 
@@ -74,10 +114,144 @@ impl<'s> Views<'s> {
     /// and depths as `Renderer::new(scene, camera, options)?.render()`.
     pub fn render(&self, camera: &Camera) -> Result<Frame<f32>> {
         self.check(camera)?;
-        let renderer = self.renderer(camera)?;
-        let frame = renderer.render();
+        Ok(self.render_marking(camera)?.frame)
+    }
+
+    /// [`Views::render`] without the range check (call [`Views::check`] first), also giving
+    /// the pixels re-decided in f64 and what the view took. From the second view on, with the
+    /// tiles and the packet kernel's default method, the view leaves out the clusters of
+    /// triangles it proves it cannot see (`render::cull`); the ids and depths are a render of
+    /// every primitive's, bit for bit.
+    pub fn render_marking(&self, camera: &Camera) -> Result<Rendered> {
+        let mut guard = self.cull.lock().unwrap_or_else(|e| e.into_inner());
+        let state = &mut *guard;
+        let culls = cull::applies(&self.options, self.scene);
+        // the first view shows what the second may leave out; nothing is left out before
+        let plan = match &state.last {
+            Some(last) if culls => {
+                let clusters = self.range.get_or_init(|| RangeClusters::new(self.scene));
+                let set = std::mem::take(&mut state.sets[0]);
+                Some(Plan::new(clusters, camera, Some(last), set))
+            }
+            _ => None,
+        };
+        let spare = self.take_spare();
+        let left_out = plan.as_ref().map(|p| &p.left_out);
+        let (renderer, frame, redone, [setup, render]) =
+            cull::render_without(self.scene, camera, &self.options, spare, left_out)?;
+        let mut done = Rendered {
+            frame,
+            redecided: redone,
+            setup_s: setup,
+            render_s: render,
+            accel: renderer.accel(),
+            parallel: renderer.is_parallel(),
+            redecides: renderer.redecides(),
+            left_out: plan.as_ref().map_or(0, |p| p.left_out.len()),
+            renders: 1,
+        };
         self.give_back(renderer);
-        Ok(frame)
+        if let Some(plan) = plan {
+            done = self.settle(state, camera, plan, done)?;
+        }
+        if culls {
+            let spare = state.last.take().unwrap_or_default();
+            let n = self.scene.shapes.len();
+            state.last = Some(cull::shown(&done.frame, n, spare));
+        }
+        Ok(done)
+    }
+
+    /// Steps 3 and 4 of `render::cull`: the clusters on trial checked against the view's
+    /// frame, those that fail rendered in a second frame and merged in, and the pixels that
+    /// neither frame holds (re-decided ones) rendered alone with every cluster that may be
+    /// hit there.
+    fn settle(
+        &self,
+        state: &mut CullState,
+        camera: &Camera,
+        plan: Plan,
+        mut done: Rendered,
+    ) -> Result<Rendered> {
+        let clusters = self.range.get().expect("built by the plan");
+        let clock = std::time::Instant::now();
+        let failed = if plan.on_trial() {
+            plan.failed(&done.frame, &done.redecided)
+        } else {
+            Vec::new()
+        };
+        done.setup_s += clock.elapsed().as_secs_f64();
+        if !failed.is_empty() {
+            let f_redone = std::mem::take(&mut done.redecided);
+            let width = camera.width as usize;
+            let clock = std::time::Instant::now();
+            let spare = std::mem::take(&mut state.sets[1]);
+            let second = plan.second(clusters, &failed, (&f_redone, width), &[], spare);
+            done.setup_s += clock.elapsed().as_secs_f64();
+            let (g, g_redone) = self.touch_up(state, camera, &second.left_out, &mut done)?;
+            done.renders = 2;
+            let clock = std::time::Instant::now();
+            let (mut known, mut h_redone) = (Vec::new(), Vec::new());
+            let mut merged = cull::merge(
+                &mut done.frame,
+                &f_redone,
+                (&g, &g_redone),
+                &second,
+                &failed,
+                &known,
+            );
+            done.render_s += clock.elapsed().as_secs_f64();
+            if let Err(unsettled) = &merged {
+                // the pixels neither frame holds: rendered with every cluster that may be hit there
+                let set = plan.only_at(clusters, (unsettled, width), IdSet::default());
+                let (h, redone) = self.touch_up(state, camera, &set, &mut done)?;
+                h_redone = redone;
+                done.renders = 3;
+                known.extend(unsettled.iter().map(|&p| (p, (h.ids[p], h.depth[p]))));
+                state.touch.frame = Some(h);
+                merged = cull::merge(
+                    &mut done.frame,
+                    &f_redone,
+                    (&g, &g_redone),
+                    &second,
+                    &failed,
+                    &known,
+                );
+            }
+            done.redecided =
+                cull::merged_redone(&f_redone, [&g_redone, &h_redone], &second, &known);
+            state.touch.frame = Some(g);
+            state.sets[1] = second.left_out;
+            // (the second merge takes every unsettled pixel from `known`: it cannot fail)
+            merged.expect("every unsettled pixel has its value");
+            let back: usize = (failed.iter())
+                .map(|&(k, ..)| clusters.cluster(k as usize).len())
+                .sum();
+            done.left_out -= back;
+        }
+        state.sets[0] = plan.left_out;
+        Ok(done)
+    }
+
+    /// Renders `camera` without the primitives of `left_out` into the buffers kept for second
+    /// renders, adding its times to `done`: the frame and its re-decided pixels.
+    fn touch_up(
+        &self,
+        state: &mut CullState,
+        camera: &Camera,
+        left_out: &IdSet,
+        done: &mut Rendered,
+    ) -> Result<(Frame<f32>, Vec<usize>)> {
+        let touch = Spare {
+            frame: state.touch.frame.take(),
+            ..Spare::default()
+        };
+        let (renderer, frame, redone, [s, r]) =
+            cull::render_without(self.scene, camera, &self.options, touch, Some(left_out))?;
+        drop(renderer);
+        done.setup_s += s;
+        done.render_s += r;
+        Ok((frame, redone))
     }
 
     /// The prepared one-camera renderer for `camera` (the per-view setup), for a caller that
@@ -85,17 +259,24 @@ impl<'s> Views<'s> {
     /// [`Views::give_back`] once done. The eye's range is not checked here: call
     /// [`Views::check`] first.
     pub fn renderer(&self, camera: &Camera) -> Result<Renderer<'s>> {
-        let spare = Spare {
+        Renderer::with_spare(self.scene, camera, &self.options, self.take_spare(), None)
+    }
+
+    /// The buffers the next view fills, kept for the view after.
+    fn take_spare(&self) -> Spare {
+        Spare {
             keep: true,
             ..std::mem::take(&mut *self.spare())
-        };
-        Renderer::with_spare(self.scene, camera, &self.options, spare)
+        }
     }
 
     /// Hands a renderer back once its frame is rendered: the next view's stores and tiles are
     /// written into its buffers rather than fresh memory.
     pub fn give_back(&self, renderer: Renderer<'s>) {
-        let left = renderer.into_spare();
+        let mut left = renderer.into_spare();
+        // a view that left primitives out holds only what it used: the next view's columns
+        // grow where they need to, without copying (the memory is not held between views)
+        left.scene.packed.shrink_to_fit();
         let mut spare = self.spare();
         spare.scene = left.scene;
         spare.redecide = left.redecide;

@@ -231,23 +231,18 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
                 .map(|(&(flag, kind), p)| (flag, p.as_path(), kind))
                 .collect();
             let mut set = OutputSet::create(&outputs, &[])?;
-            let clock = Instant::now();
-            let renderer = views.renderer(camera)?;
-            let setup = secs(clock.elapsed());
-            let clock = Instant::now();
-            let (frame, redone) = renderer.render_marking(None);
-            let render = secs(clock.elapsed());
-            if renderer.redecides() {
-                *stats.redecided.get_or_insert(0) += redone.len();
+            let view = views.render_marking(camera)?;
+            let (frame, setup, render) = (view.frame, view.setup_s, view.render_s);
+            if view.redecides {
+                *stats.redecided.get_or_insert(0) += view.redecided.len();
             }
-            stats.accel = renderer.accel().name();
-            stats.threads = if renderer.is_parallel() {
+            stats.accel = view.accel.name();
+            stats.threads = if view.parallel {
                 crate::par::current_num_threads()
             } else {
                 1
             };
             stats.renders.push(render);
-            views.give_back(renderer);
             let clock = Instant::now();
             let rgb = shade(
                 &frame.ids,

@@ -223,10 +223,16 @@ impl Tiles {
             let e = &prints[(s & ((1 << PACKETS_SHIFT) - 1)) as usize];
             Entry::new(e.near, e.prim, (s >> PACKETS_SHIFT) as u8)
         }));
+        // (the room of a larger view before is given back: a view that leaves primitives out,
+        // `render::cull`, holds no more than it uses)
+        entries.shrink_to_fit();
         let scratch = match keep {
             true => {
+                let (used_prints, used_slots) = (prints.len(), slots.len());
                 prints.clear();
                 slots.clear();
+                prints.shrink_to(used_prints);
+                slots.shrink_to(used_slots);
                 Scratch { prints, slots }
             }
             false => Scratch::default(),

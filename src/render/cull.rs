@@ -1,0 +1,447 @@
+//! Many views leave out what they cannot see: whole clusters of 64 triangles
+//! (`scene::range_clusters`) that no ray of the view reaches (off screen, behind the eye), and,
+//! from the second view on, clusters that the last view did not show and that the view's own
+//! frame proves hidden. A view's ids, depths and re-decided pixels stay those of a render of
+//! every primitive (a one-view run with the same camera), bit for bit.
+//!
+//! Per view (`Views::render_marking`):
+//!
+//! 1. Each cluster's reach from the eye (`accel::clusters`): the pixels on which any kernel can
+//!    accept one of its faces, and a distance `near` below every distance it can return there.
+//!    A cluster on no pixel is left out. A cluster the last view showed none of, with a
+//!    tightly bounded reach ([`TRIAL_G`]), is left out *on trial*, when the trials are worth
+//!    it ([`TRIALS_MIN`]). Every other cluster is *kept*; one with no bounded reach is *loose*.
+//! 2. The kept clusters are rendered as usual (`Renderer`, the stores and tiles of those
+//!    primitives alone): the frame `F`, and the pixels whose f32 hit `--precision auto`
+//!    re-decided.
+//! 3. Each cluster on trial is checked against `F`: it stays out when every pixel of its
+//!    rectangle holds a hit nearer than its `near` that was not re-decided.
+//!    Why that is exact: at such a pixel the cluster's faces can only return distances at or
+//!    beyond `near`, so the nearest-hit rule (smaller `t`, ties to the lower id) keeps the f32
+//!    winner, whose distance is the pixel's depth; whether that hit is trusted, measured or
+//!    re-decided depends on the winner and the pixel alone, so `auto` does the same; and a
+//!    re-decision at any other pixel meets none of the cluster's faces (its rays lie outside
+//!    the rectangle, which holds every ray the f64 kernels accept too).
+//! 4. The clusters that fail (the view turned them towards the eye, or a nearer surface does
+//!    not cover them) are rendered in a second frame `G`, merged into `F` pixel by pixel:
+//!    - where neither re-decided the pixel, the nearer of the two winners by the nearest-hit
+//!      rule: over the primitives of both, the f32 winner is the nearer of the two, and it is
+//!      trusted in the union as it was in its own frame;
+//!    - where `F` re-decided a pixel that no failed cluster reaches, `F`'s value: the failed
+//!      clusters cannot be hit there;
+//!    - where `F` re-decided a pixel that a failed cluster's rectangle holds, `G` must hold
+//!      every cluster a kernel may hit there (the failed ones, the loose ones, the kept ones
+//!      whose rectangle holds it: `Plan::second`), and gives the pixel alone;
+//!    - where `G` re-decided a pixel, `F`'s value if no failed cluster reaches it, or if `F`
+//!      holds an f32 hit there nearer than every failed cluster's `near` (the union's winner is
+//!      then `F`'s, trusted); otherwise a third render `H` of every cluster a kernel may hit at
+//!      those pixels (`Plan::only_at`) gives them alone.
+//!
+//! What the last view showed is a guess, and the check makes any guess safe: a bad guess
+//! costs the second render, never a wrong pixel. The first view renders every primitive; views
+//! whose options take no tiles (other kernels, methods, accelerations) render every primitive
+//! (through `Views`, not this module). Tests: `tests/views_cull.rs` holds every view of slow
+//! orbits, random jumps and dollies on the seed scans and on subdivided spheres, with `auto`
+//! and `f32`, to a renderer of its own, ids, depths and re-decided pixels; `accel::clusters`
+//! holds the reach to the kernels.
+
+use super::{Frame, Options, Renderer};
+use crate::accel::clusters::{ClusterScreen, Reach};
+use crate::accel::tiles::{TILE_H, TILE_W};
+use crate::camera::Camera;
+use crate::kernel::closer;
+use crate::par::prelude::*;
+use crate::scene::Scene;
+use crate::scene::range_clusters::RangeClusters;
+use crate::soa::IdSet;
+
+/// Only clusters whose sphere is widened by at most this fraction of their distance
+/// (`accel::clusters`: `g`) are left out on trial. The others, the silhouette's (an eye
+/// nearly in some face's plane), have a `near` far before their faces and would fail.
+const TRIAL_G: f64 = 1e-4;
+
+/// A view leaves clusters out on trial only when they hold at least this fraction of the
+/// scene's primitives, and the clusters with no bounded reach at most [`LOOSE_MAX`]: a cluster
+/// that fails its check is rendered a second time (with every cluster with no bounded reach,
+/// where `auto` re-decided a pixel it covers), and trials of a few clusters cost more than
+/// they save. Measured on orbits of the seed armadillo subdivided twice and three times
+/// (docs/performance.md, "Many views").
+const TRIALS_MIN: f64 = 0.25;
+/// See [`TRIALS_MIN`].
+const LOOSE_MAX: f64 = 0.4;
+
+/// A cluster left out on trial: its index, pixel rectangle and `near`.
+type Trial = (u32, [u16; 4], f32);
+
+/// Which clusters one view leaves out.
+pub(crate) struct Plan {
+    /// The ids of every cluster left out (on no pixel, or on trial).
+    pub(crate) left_out: IdSet,
+    /// The clusters on no pixel (left out for sure).
+    nowhere: Vec<u32>,
+    /// The clusters left out on trial.
+    trials: Vec<Trial>,
+    /// The clusters rendered with a bounded reach, and their rectangles.
+    kept: Vec<(u32, [u16; 4])>,
+    /// The clusters rendered whose reach is not bounded.
+    loose: Vec<u32>,
+}
+
+/// The second render of a view (module comment, step 4): the primitives it leaves out, and
+/// the pixels where it holds every primitive a kernel can accept (`F`'s re-decided pixels in
+/// a failed cluster's rectangle), whose values it gives alone.
+pub(crate) struct Second {
+    pub(crate) left_out: IdSet,
+    pub(crate) complete: Vec<usize>,
+}
+
+impl Plan {
+    /// The plan for `camera`: clusters on no pixel, and, where `last` (the ids the last view
+    /// showed) is given, the clusters with a bounded reach that showed none of them, on trial.
+    pub(crate) fn new(
+        clusters: &RangeClusters,
+        camera: &Camera,
+        last: Option<&IdSet>,
+        spare: IdSet,
+    ) -> Plan {
+        let screen = ClusterScreen::new(camera);
+        let eye = camera.eye;
+        let reach: Vec<Reach> = (0..clusters.len())
+            .into_par_iter()
+            .map(|k| {
+                let Some(gap) = clusters.gap(k, eye) else {
+                    return Reach::Unbounded;
+                };
+                let reach = screen.reach(&gap);
+                let seen = || {
+                    last.is_none_or(|s| {
+                        clusters
+                            .cluster(k)
+                            .iter()
+                            .any(|&id| s.contains(id as usize))
+                    })
+                };
+                match reach {
+                    // (a kept cluster is told from one on trial by `near`: NaN)
+                    Reach::Pixels(rect, _, g) if g > TRIAL_G || seen() => {
+                        Reach::Pixels(rect, f32::NAN, g)
+                    }
+                    r => r,
+                }
+            })
+            .collect();
+        let mut plan = Plan {
+            left_out: IdSet::empty_in(clusters.ids_len(), spare),
+            nowhere: Vec::new(),
+            trials: Vec::new(),
+            kept: Vec::new(),
+            loose: Vec::new(),
+        };
+        // trials only where they may pay (module comment)
+        let size = |class: fn(&Reach) -> bool| {
+            (reach.iter().enumerate())
+                .filter(|(_, r)| class(r))
+                .map(|(k, _)| clusters.cluster(k).len())
+                .sum::<usize>()
+        };
+        let n = clusters.ids_len();
+        let on_trial = size(|r| matches!(r, Reach::Pixels(_, near, _) if !near.is_nan()));
+        let loose = size(|r| matches!(r, Reach::Unbounded));
+        let trials =
+            on_trial as f64 >= TRIALS_MIN * n as f64 && loose as f64 <= LOOSE_MAX * n as f64;
+        for (k, r) in reach.into_iter().enumerate() {
+            let k32 = k as u32;
+            let r = match r {
+                Reach::Pixels(rect, _, g) if !trials => Reach::Pixels(rect, f32::NAN, g),
+                r => r,
+            };
+            match r {
+                Reach::Unbounded => plan.loose.push(k32),
+                Reach::Pixels(rect, near, _) if near.is_nan() => plan.kept.push((k32, rect)),
+                Reach::Pixels(rect, near, _) => plan.trials.push((k32, rect, near)),
+                Reach::Nowhere => plan.nowhere.push(k32),
+            }
+            if matches!(r, Reach::Nowhere) || matches!(r, Reach::Pixels(_, n, _) if !n.is_nan()) {
+                for &id in clusters.cluster(k) {
+                    plan.left_out.insert(id as usize);
+                }
+            }
+        }
+        plan
+    }
+
+    /// Whether anything is left out on trial.
+    pub(crate) fn on_trial(&self) -> bool {
+        !self.trials.is_empty()
+    }
+
+    /// The clusters on trial that `frame` (its re-decided pixels `redone`) does not prove
+    /// hidden (module comment, step 3).
+    pub(crate) fn failed(&self, frame: &Frame<f32>, redone: &[usize]) -> Vec<Trial> {
+        let farthest = TileDepths::new(frame, redone);
+        (self.trials.par_iter())
+            .filter(|(_, rect, near)| !farthest.hides(frame, *rect, *near))
+            .map(|t| *t)
+            .collect()
+    }
+
+    /// The second render for the clusters `failed`, after the first frame's re-decided
+    /// pixels `redone` (width `width`): the failed clusters and, where a failed one's
+    /// rectangle holds a re-decided pixel, and at the pixels `also`, every cluster that may
+    /// be hit there (the loose ones, the kept ones whose rectangle holds it).
+    pub(crate) fn second(
+        &self,
+        clusters: &RangeClusters,
+        failed: &[Trial],
+        (redone, width): (&[usize], usize),
+        also: &[usize],
+        spare: IdSet,
+    ) -> Second {
+        let mut complete: Vec<usize> = (redone.iter().copied())
+            .filter(|&p| failed.iter().any(|&(_, rect, _)| inside(p, width, rect)))
+            .chain(also.iter().copied())
+            .collect();
+        complete.sort_unstable();
+        complete.dedup();
+        let kept = (self.kept.iter())
+            .filter(|&&(_, rect)| complete.iter().any(|&p| inside(p, width, rect)))
+            .map(|&(k, _)| k);
+        let mut left_out = IdSet::full_in(clusters.ids_len(), spare);
+        // (the loose clusters only where some pixel needs them all)
+        let loose = if complete.is_empty() {
+            &[][..]
+        } else {
+            &self.loose[..]
+        };
+        let rendered = (failed.iter().map(|&(k, ..)| k))
+            .chain(loose.iter().copied())
+            .chain(kept);
+        for k in rendered {
+            for &id in clusters.cluster(k as usize) {
+                left_out.remove(id as usize);
+            }
+        }
+        Second { left_out, complete }
+    }
+
+    /// The ids left out of a render that gives `pixels` (width `width`) their values alone:
+    /// every cluster but those that may be hit there (the loose ones, and those kept or on
+    /// trial whose rectangle holds one).
+    pub(crate) fn only_at(
+        &self,
+        clusters: &RangeClusters,
+        (pixels, width): (&[usize], usize),
+        spare: IdSet,
+    ) -> IdSet {
+        let holds = |rect| pixels.iter().any(|&p| inside(p, width, rect));
+        let rendered = (self.trials.iter().filter(|t| holds(t.1)).map(|t| t.0))
+            .chain(self.kept.iter().filter(|k| holds(k.1)).map(|k| k.0))
+            .chain(self.loose.iter().copied());
+        let mut left_out = IdSet::full_in(clusters.ids_len(), spare);
+        for k in rendered {
+            for &id in clusters.cluster(k as usize) {
+                left_out.remove(id as usize);
+            }
+        }
+        left_out
+    }
+}
+
+/// Whether pixel `p` (row-major, `width` wide) lies in `rect`.
+fn inside(p: usize, width: usize, [x0, y0, x1, y1]: [u16; 4]) -> bool {
+    let (x, y) = (p % width, p / width);
+    (x0 as usize..=x1 as usize).contains(&x) && (y0 as usize..=y1 as usize).contains(&y)
+}
+
+/// Merges `g`, the second render `second` of the clusters `failed` (re-decided pixels
+/// `g_redone`), into `f` (re-decided pixels `f_redone`) (module comment, step 4). Where `G`
+/// re-decided a pixel that a failed cluster may reach nearer than `F`'s hit, neither frame
+/// holds the pixel's value: those pixels come back as the error, and `f` is left as it was.
+pub(crate) fn merge(
+    f: &mut Frame<f32>,
+    f_redone: &[usize],
+    (g, g_redone): (&Frame<f32>, &[usize]),
+    second: &Second,
+    failed: &[Trial],
+    known: &[Pixel],
+) -> Result<(), Vec<usize>> {
+    let width = f.width as usize;
+    // the pixels decided one by one, and their values
+    let mut fixed: Vec<Pixel> = Vec::new();
+    let mut unsettled = Vec::new();
+    let at = |fr: &Frame<f32>, p: usize| (fr.ids[p], fr.depth[p]);
+    for &p in &second.complete {
+        fixed.push((p, at(g, p)));
+    }
+    let is_known = |p: usize| known.iter().any(|&(q, _)| q == p);
+    for &p in g_redone {
+        if second.complete.contains(&p) || is_known(p) {
+            continue;
+        }
+        // where no failed cluster reaches, or `F`'s hit is nearer than any of theirs, `F`
+        let nearest = (failed.iter())
+            .filter(|&&(_, rect, _)| inside(p, width, rect))
+            .map(|&(.., near)| near)
+            .fold(f32::INFINITY, f32::min);
+        if nearest == f32::INFINITY || !f_redone.contains(&p) && f.depth[p] < nearest {
+            fixed.push((p, at(f, p)));
+        } else {
+            unsettled.push(p);
+        }
+    }
+    if !unsettled.is_empty() {
+        return Err(unsettled);
+    }
+    for &p in f_redone {
+        if !second.complete.contains(&p) {
+            fixed.push((p, at(f, p)));
+        }
+    }
+    (f.ids
+        .par_chunks_mut(width)
+        .zip(f.depth.par_chunks_mut(width)))
+    .zip(g.ids.par_chunks(width).zip(g.depth.par_chunks(width)))
+    .for_each(|((fi, fd), (gi, gd))| {
+        for x in 0..fi.len() {
+            if closer(gd[x], gi[x], fd[x], fi[x]) {
+                (fi[x], fd[x]) = (gi[x], gd[x]);
+            }
+        }
+    });
+    for (p, (id, t)) in fixed.into_iter().chain(known.iter().copied()) {
+        (f.ids[p], f.depth[p]) = (id, t);
+    }
+    Ok(())
+}
+
+/// A pixel (row-major index) and its id and depth.
+pub(crate) type Pixel = (usize, (i32, f32));
+
+/// The re-decided pixels of a merged frame (ascending): `F`'s where `F` gave the pixel,
+/// `G`'s where the second render gave it alone, `H`'s where a third gave it (`known`).
+pub(crate) fn merged_redone(
+    f_redone: &[usize],
+    [g_redone, h_redone]: [&[usize]; 2],
+    second: &Second,
+    known: &[Pixel],
+) -> Vec<usize> {
+    let is_known = |p: &usize| known.iter().any(|k| k.0 == *p);
+    let by_g = |p: &usize| second.complete.contains(p) && !is_known(p);
+    let mut all: Vec<usize> = (f_redone.iter().copied())
+        .filter(|p| !second.complete.contains(p) && !is_known(p))
+        .chain(g_redone.iter().copied().filter(by_g))
+        .chain(h_redone.iter().copied().filter(is_known))
+        .collect();
+    all.sort_unstable();
+    all
+}
+
+/// The ids a frame shows, in `spare`'s buffer: a view's guess at the next one's.
+pub(crate) fn shown(frame: &Frame<f32>, primitives: usize, spare: IdSet) -> IdSet {
+    let mut set = IdSet::empty_in(primitives, spare);
+    for &id in &frame.ids {
+        if id >= 0 {
+            set.insert(id as usize);
+        }
+    }
+    set
+}
+
+/// Whether a renderer for `options` takes the tiles with the packet kernel's default method
+/// (f32 or `auto`): the renders whose frames the check of step 3 reasons about.
+pub(crate) fn applies(options: &Options, scene: &Scene) -> bool {
+    use super::{Kernel, Method};
+    use crate::accel::Accel;
+    options.kernel == Kernel::Packet
+        && matches!(options.method, Method::Default | Method::Auto)
+        && options.accel.resolve(scene.shapes.len()) == Accel::Tiles
+}
+
+/// Per 8x8 tile of a frame, the farthest depth of its pixels (+inf where one is background),
+/// NaN where one was re-decided (such a tile proves nothing about its pixels).
+struct TileDepths {
+    across: usize,
+    far: Vec<f32>,
+}
+
+impl TileDepths {
+    fn new(frame: &Frame<f32>, redone: &[usize]) -> TileDepths {
+        let (w, h) = (frame.width as usize, frame.height as usize);
+        let across = w.div_ceil(TILE_W);
+        let mut far = vec![0f32; across * h.div_ceil(TILE_H)];
+        (far.par_chunks_mut(across).enumerate()).for_each(|(ty, row)| {
+            for y in ty * TILE_H..((ty + 1) * TILE_H).min(h) {
+                let depth = &frame.depth[y * w..(y + 1) * w];
+                for (tx, far) in row.iter_mut().enumerate() {
+                    for &t in &depth[tx * TILE_W..((tx + 1) * TILE_W).min(w)] {
+                        // (background is +inf; a NaN, never written, counts as background)
+                        if t.is_nan() || t > *far {
+                            *far = if t.is_nan() { f32::INFINITY } else { t };
+                        }
+                    }
+                }
+            }
+        });
+        // a tile with a re-decided pixel proves nothing: NaN, below no `near`
+        for &p in redone {
+            far[(p / w) / TILE_H * across + (p % w) / TILE_W] = f32::NAN;
+        }
+        TileDepths { across, far }
+    }
+
+    /// Whether every pixel of `rect` holds a hit nearer than `near` that was not re-decided:
+    /// tile by tile, pixel by pixel only in the tiles whose farthest depth does not settle it.
+    fn hides(&self, frame: &Frame<f32>, [x0, y0, x1, y1]: [u16; 4], near: f32) -> bool {
+        let w = frame.width as usize;
+        let (x0, y0, x1, y1) = (x0 as usize, y0 as usize, x1 as usize, y1 as usize);
+        for ty in y0 / TILE_H..=y1 / TILE_H {
+            for tx in x0 / TILE_W..=x1 / TILE_W {
+                let far = self.far[ty * self.across + tx];
+                if far < near {
+                    continue;
+                }
+                if far.is_nan() {
+                    return false;
+                }
+                let ys = (ty * TILE_H).max(y0)..=((ty + 1) * TILE_H - 1).min(y1);
+                let xs = (tx * TILE_W).max(x0)..=((tx + 1) * TILE_W - 1).min(x1);
+                for y in ys {
+                    if !frame.depth[y * w + xs.start()..=y * w + xs.end()]
+                        .iter()
+                        .all(|&t| t < near)
+                    {
+                        return false;
+                    }
+                }
+            }
+        }
+        true
+    }
+}
+
+/// A render's renderer (to hand its buffers back), its frame and re-decided pixels, and its
+/// seconds of setup and render.
+pub(crate) type Rendering<'s> = (Renderer<'s>, Frame<f32>, Vec<usize>, [f64; 2]);
+
+/// Renders `camera` with the primitives of `left_out` left out, into `spare`'s buffers: the
+/// renderer (to hand its buffers back), the frame and its re-decided pixels, and the seconds
+/// of setup and render.
+pub(crate) fn render_without<'s>(
+    scene: &'s Scene,
+    camera: &Camera,
+    options: &Options,
+    spare: super::renderer::Spare,
+    left_out: Option<&IdSet>,
+) -> crate::Result<Rendering<'s>> {
+    let clock = std::time::Instant::now();
+    let renderer = Renderer::with_spare(scene, camera, options, spare, left_out)?;
+    let setup = clock.elapsed().as_secs_f64();
+    let clock = std::time::Instant::now();
+    let (frame, redone) = renderer.render_marking(None);
+    Ok((
+        renderer,
+        frame,
+        redone,
+        [setup, clock.elapsed().as_secs_f64()],
+    ))
+}

@@ -1,0 +1,160 @@
+//! Many views leave out the clusters of triangles they prove they cannot see (`render::cull`):
+//! every view must still be a render of every primitive, bit for bit. Camera paths that turn
+//! slowly (where the last view's guess is good), jump at random (where it is bad), and dolly
+//! from far off into the scene, on the seed scans and on a scene of subdivided spheres with
+//! quads and spheres among them, with `--precision auto` and `f32`: each view's ids, depths and
+//! re-decided pixels equal a renderer of its own. The paths must leave primitives out and
+//! take second renders, or the test would not test the culling (the raw scans' clusters are
+//! mostly unbounded, so their views leave out only what is off screen: the spheres' views take
+//! the trials).
+
+mod common;
+
+use common::{Rng, icosphere};
+use glam::DVec3;
+use lanecast::scene::views::orbit;
+use lanecast::scene::{CameraSpec, Scene, Shape, Shapes};
+use lanecast::{Camera, Method, Options, Renderer, Views, load_scene};
+use std::path::Path;
+
+/// Three subdivided spheres of triangles (runs of 64 neighbouring faces), one behind the
+/// other, a floor of quads and two sphere primitives.
+fn spheres_scene() -> Scene {
+    let mut shapes = Shapes::new();
+    let balls = [
+        (DVec3::new(0.0, 1.0, 0.0), 1.0),
+        (DVec3::new(0.4, 1.2, -3.0), 1.5),
+        (DVec3::new(-2.5, 0.8, -1.0), 0.8),
+    ];
+    for (centre, r) in balls {
+        for t in icosphere(centre, r, 4) {
+            shapes.push(Shape::Triangle(t), 2);
+        }
+    }
+    for i in -2..2 {
+        let (x0, x1) = (i as f64 * 3.0, i as f64 * 3.0 + 3.0);
+        let quad =
+            [(x0, 6.0), (x1, 6.0), (x1, -6.0), (x0, -6.0)].map(|(x, z)| DVec3::new(x, -0.2, z));
+        shapes.push(Shape::Quad(quad), 3);
+    }
+    for (c, r) in [
+        (DVec3::new(2.0, 0.5, 1.0), 0.5),
+        (DVec3::new(-1.0, 2.5, -5.0), 0.7),
+    ] {
+        shapes.push(
+            Shape::Sphere {
+                center: c,
+                radius: r,
+            },
+            4,
+        );
+    }
+    let mut scene = lanecast::parse_scene(
+        "camera eye 0 2 7 look 0 1 -1 up 0 1 0 fov 50\n",
+        Path::new("balls.sc"),
+    )
+    .unwrap();
+    scene.shapes = shapes;
+    scene
+}
+
+/// The centre and radius of the scene's primitives' vertices (spheres by their centres).
+fn extent(scene: &Scene) -> (DVec3, f64) {
+    let points: Vec<DVec3> = (scene.shapes.iter())
+        .flat_map(|s| match s {
+            Shape::Sphere { center, .. } => vec![center],
+            Shape::Triangle(v) => v.to_vec(),
+            Shape::Quad(v) => v.to_vec(),
+        })
+        .collect();
+    let (lo, hi) = (points.iter()).fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| {
+        (lo.min(*p), hi.max(*p))
+    });
+    ((lo + hi) / 2.0, (hi - lo).length() / 2.0)
+}
+
+/// Cameras: a slow orbit, random jumps from inside the scene to four radii off, and a dolly
+/// from far off to the centre.
+fn paths(scene: &Scene, rng: &mut Rng) -> Vec<Vec<CameraSpec>> {
+    let (centre, radius) = extent(scene);
+    let slow = orbit(&scene.camera, 48).into_iter().take(10).collect();
+    let jumps = (0..8)
+        .map(|_| CameraSpec {
+            eye: centre + rng.direction() * radius * rng.range(0.2, 4.0),
+            look: centre + rng.direction() * radius * rng.range(0.0, 0.5),
+            up: rng.direction(),
+            fov_deg: Some(rng.range(10.0, 100.0)),
+        })
+        .collect();
+    let from = centre + rng.direction() * radius * 3.0;
+    let dolly = (0..8)
+        .map(|k| CameraSpec {
+            eye: from + (centre - from) * (k as f64 / 8.0),
+            look: centre,
+            up: DVec3::Y,
+            fov_deg: Some(60.0),
+        })
+        .collect();
+    vec![slow, jumps, dolly]
+}
+
+/// The image size of every view.
+const SIZE: (u32, u32) = (320, 240);
+
+#[test]
+fn views_that_leave_clusters_out_render_every_primitive_bit_for_bit() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut scenes = vec![spheres_scene()];
+    for name in ["bunny.sc", "armadillo.sc", "teapot.sc"] {
+        scenes.push(load_scene(&root.join("scenes").join(name)).expect(name));
+    }
+    let mut rng = Rng::new(0x0CC1_0DED);
+    let (mut views_done, mut culled, mut second, mut third) = (0, 0, 0, 0);
+    for scene in &scenes {
+        for path in paths(scene, &mut rng) {
+            for method in [Method::Auto, Method::Default] {
+                let options = Options {
+                    method,
+                    ..Options::default()
+                };
+                let views = Views::new(scene, &options).unwrap();
+                for (k, spec) in path.iter().enumerate() {
+                    let Ok(camera) = Camera::look_at(spec, SIZE.0, SIZE.1) else {
+                        continue;
+                    };
+                    if views.check(&camera).is_err() {
+                        continue;
+                    }
+                    let what = format!("{} {method:?} view {k}", scene.source.display());
+                    let got = views.render_marking(&camera).unwrap();
+                    let alone = Renderer::new(scene, &camera, &options).unwrap();
+                    let (want, redone) = alone.render_marking(None);
+                    let pixel =
+                        |f: &lanecast::Frame<f32>, p: usize| (f.ids[p], f.depth[p].to_bits());
+                    if let Some(p) =
+                        (0..want.ids.len()).find(|&p| pixel(&got.frame, p) != pixel(&want, p))
+                    {
+                        panic!(
+                            "{what}: pixel {p}: (id, depth bits) {:?}, alone {:?}",
+                            pixel(&got.frame, p),
+                            pixel(&want, p)
+                        );
+                    }
+                    assert_eq!(got.redecided, redone, "{what}: re-decided pixels");
+                    views_done += 1;
+                    culled += usize::from(got.left_out > 0);
+                    second += usize::from(got.renders >= 2);
+                    third += usize::from(got.renders >= 3);
+                    views.recycle(got.frame);
+                }
+            }
+        }
+    }
+    eprintln!(
+        "{views_done} views: {culled} left primitives out, {second} rendered twice, {third} three times"
+    );
+    assert!(
+        views_done > 150 && culled > views_done / 4 && second > 20,
+        "{views_done} views: {culled} left primitives out, {second} rendered twice"
+    );
+}
