@@ -60,11 +60,52 @@ pub(crate) enum Reach {
     /// On no pixel: off screen or behind the eye.
     Nowhere,
     /// Only on the pixels of the rectangle `[x0, y0, x1, y1]` (inclusive), at distances no
-    /// nearer than `near`; the third value is `g`, how far the faces' sphere was widened, as
-    /// a fraction of their farthest distance (module comment).
-    Pixels([u16; 4], f32, f64),
+    /// nearer than `near`; the third value is `g`, how far the faces' box was widened, as
+    /// a fraction of their farthest distance (module comment); the fourth, the widened box,
+    /// which every pixel's ray the kernels accept meets.
+    Pixels([u16; 4], f32, f64, Slab),
     /// Not bounded from this view.
     Unbounded,
+}
+
+/// A cluster's box widened as the module comment says, seen from the eye: every ray a kernel
+/// accepts on one of its faces meets it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Slab {
+    /// The box's frame, and the eye in the box's coordinates.
+    frame: [DVec3; 3],
+    eye: DVec3,
+    /// The least and greatest coordinates, widened.
+    lo: DVec3,
+    hi: DVec3,
+}
+
+impl Slab {
+    /// Whether the ray from the eye along `q` (any length; a pixel's exact ray
+    /// `f + sx r + sy u`) meets the box (the slab test in the box's frame, in f64: the box
+    /// carries a margin far beyond this test's rounding).
+    pub(crate) fn meets(&self, q: DVec3) -> bool {
+        let d = DVec3::new(
+            q.dot(self.frame[0]),
+            q.dot(self.frame[1]),
+            q.dot(self.frame[2]),
+        );
+        let (mut enter, mut leave) = (0f64, f64::INFINITY);
+        for i in 0..3 {
+            let (lo, hi, o, d) = (self.lo[i], self.hi[i], self.eye[i], d[i]);
+            if d == 0.0 {
+                if o < lo || o > hi {
+                    return false;
+                }
+                continue;
+            }
+            let (a, b) = ((lo - o) / d, (hi - o) / d);
+            enter = enter.max(a.min(b));
+            leave = leave.min(a.max(b));
+        }
+        // (a NaN, from an infinite coordinate, meets)
+        enter.is_nan() || leave.is_nan() || enter <= leave
+    }
 }
 
 /// A camera's screen, for bounding clusters.
@@ -104,6 +145,8 @@ impl ClusterScreen {
         let t_max = reach / (1.0 - g) * (1.0 + SLACK);
         // the box widened by `g t_max` (and its coordinates' rounding), about the centre
         let m = DVec3::splat((g * t_max + 1e-9 * reach) * (1.0 + SLACK));
+        // (and a relative 1e-9 of the farthest distance over the slab test's own rounding)
+        let m = m + DVec3::splat(1e-9 * reach);
         let (lo, hi) = (lo - m, hi + m);
         let f = frame(axis);
         let oc = centre - v.eye;
@@ -123,7 +166,13 @@ impl ClusterScreen {
         if near.is_nan() || near <= 0.0 || plane <= 0.0 {
             return Reach::Unbounded;
         }
-        Reach::Pixels(rect, near_f32(near), g)
+        let slab = Slab {
+            frame: f,
+            eye: e,
+            lo,
+            hi,
+        };
+        Reach::Pixels(rect, near_f32(near), g, slab)
     }
 }
 
@@ -221,7 +270,7 @@ mod tests {
                                     continue;
                                 }
                                 hits += 1;
-                                let Reach::Pixels([x0, y0, x1, y1], near, _) = reach else {
+                                let Reach::Pixels([x0, y0, x1, y1], near, _, slab) = reach else {
                                     panic!(
                                         "case {case}: cluster {k} on no pixel, hit at ({x}, {y})"
                                     );
@@ -233,6 +282,10 @@ mod tests {
                                     "case {case}: ({x}, {y}) outside {x0} {y0} {x1} {y1}"
                                 );
                                 assert!(t >= f64::from(near), "case {case}: t {t} < near {near}");
+                                let q = camera.f
+                                    + camera.r * camera.sx::<f64>(x as u32)
+                                    + camera.u * camera.sy::<f64>(y as u32);
+                                assert!(slab.meets(q), "case {case}: ({x}, {y}) misses the box");
                             }
                         }
                     }

@@ -46,7 +46,7 @@
 //! holds the reach to the kernels.
 
 use super::{Frame, Options, Renderer};
-use crate::accel::clusters::{ClusterScreen, Reach};
+use crate::accel::clusters::{ClusterScreen, Reach, Slab};
 use crate::accel::tiles::{TILE_H, TILE_W};
 use crate::camera::Camera;
 use crate::kernel::closer;
@@ -54,6 +54,7 @@ use crate::par::prelude::*;
 use crate::scene::Scene;
 use crate::scene::range_clusters::RangeClusters;
 use crate::soa::IdSet;
+use glam::DVec3;
 
 /// Only clusters whose sphere is widened by at most this fraction of their distance
 /// (`accel::clusters`: `g`) are left out on trial. The others, the silhouette's (an eye
@@ -79,8 +80,9 @@ pub(crate) struct Plan {
     pub(crate) left_out: IdSet,
     /// The clusters on no pixel (left out for sure).
     nowhere: Vec<u32>,
-    /// The clusters left out on trial.
+    /// The clusters left out on trial, and the boxes their faces' accepted rays meet.
     trials: Vec<Trial>,
+    slabs: Vec<Slab>,
     /// The clusters rendered with a bounded reach, and their rectangles.
     kept: Vec<(u32, [u16; 4])>,
     /// The clusters rendered whose reach is not bounded.
@@ -123,8 +125,8 @@ impl Plan {
                 };
                 match reach {
                     // (a kept cluster is told from one on trial by `near`: NaN)
-                    Reach::Pixels(rect, _, g) if g > TRIAL_G || seen() => {
-                        Reach::Pixels(rect, f32::NAN, g)
+                    Reach::Pixels(rect, _, g, slab) if g > TRIAL_G || seen() => {
+                        Reach::Pixels(rect, f32::NAN, g, slab)
                     }
                     r => r,
                 }
@@ -134,6 +136,7 @@ impl Plan {
             left_out: IdSet::empty_in(clusters.ids_len(), spare),
             nowhere: Vec::new(),
             trials: Vec::new(),
+            slabs: Vec::new(),
             kept: Vec::new(),
             loose: Vec::new(),
         };
@@ -145,23 +148,28 @@ impl Plan {
                 .sum::<usize>()
         };
         let n = clusters.ids_len();
-        let on_trial = size(|r| matches!(r, Reach::Pixels(_, near, _) if !near.is_nan()));
+        let on_trial = size(|r| matches!(r, Reach::Pixels(_, near, ..) if !near.is_nan()));
         let loose = size(|r| matches!(r, Reach::Unbounded));
         let trials =
             on_trial as f64 >= TRIALS_MIN * n as f64 && loose as f64 <= LOOSE_MAX * n as f64;
         for (k, r) in reach.into_iter().enumerate() {
             let k32 = k as u32;
             let r = match r {
-                Reach::Pixels(rect, _, g) if !trials => Reach::Pixels(rect, f32::NAN, g),
+                Reach::Pixels(rect, _, g, slab) if !trials => {
+                    Reach::Pixels(rect, f32::NAN, g, slab)
+                }
                 r => r,
             };
             match r {
                 Reach::Unbounded => plan.loose.push(k32),
-                Reach::Pixels(rect, near, _) if near.is_nan() => plan.kept.push((k32, rect)),
-                Reach::Pixels(rect, near, _) => plan.trials.push((k32, rect, near)),
+                Reach::Pixels(rect, near, ..) if near.is_nan() => plan.kept.push((k32, rect)),
+                Reach::Pixels(rect, near, _, slab) => {
+                    plan.trials.push((k32, rect, near));
+                    plan.slabs.push(slab);
+                }
                 Reach::Nowhere => plan.nowhere.push(k32),
             }
-            if matches!(r, Reach::Nowhere) || matches!(r, Reach::Pixels(_, n, _) if !n.is_nan()) {
+            if matches!(r, Reach::Nowhere) || matches!(r, Reach::Pixels(_, n, ..) if !n.is_nan()) {
                 for &id in clusters.cluster(k) {
                     plan.left_out.insert(id as usize);
                 }
@@ -175,13 +183,24 @@ impl Plan {
         !self.trials.is_empty()
     }
 
-    /// The clusters on trial that `frame` (its re-decided pixels `redone`) does not prove
-    /// hidden (module comment, step 3).
-    pub(crate) fn failed(&self, frame: &Frame<f32>, redone: &[usize]) -> Vec<Trial> {
+    /// The clusters on trial that `frame` (its re-decided pixels `redone`, ascending; the
+    /// view of `camera`) does not prove hidden (module comment, step 3).
+    pub(crate) fn failed(
+        &self,
+        frame: &Frame<f32>,
+        redone: &[usize],
+        camera: &Camera,
+    ) -> Vec<Trial> {
         let farthest = TileDepths::new(frame, redone);
-        (self.trials.par_iter())
-            .filter(|(_, rect, near)| !farthest.hides(frame, *rect, *near))
-            .map(|t| *t)
+        let rays = camera.tables::<f64>(1, 1);
+        let check = Check {
+            frame,
+            redone,
+            rays: &rays,
+        };
+        (self.trials.par_iter().zip(&self.slabs))
+            .filter(|(t, slab)| !farthest.hides(&check, t.1, t.2, slab))
+            .map(|(t, _)| *t)
             .collect()
     }
 
@@ -389,34 +408,46 @@ impl TileDepths {
         TileDepths { across, far }
     }
 
-    /// Whether every pixel of `rect` holds a hit nearer than `near` that was not re-decided:
-    /// tile by tile, pixel by pixel only in the tiles whose farthest depth does not settle it.
-    fn hides(&self, frame: &Frame<f32>, [x0, y0, x1, y1]: [u16; 4], near: f32) -> bool {
-        let w = frame.width as usize;
+    /// Whether every pixel of `rect` whose ray meets `slab` holds a hit nearer than `near`
+    /// that was not re-decided: tile by tile, pixel by pixel only in the tiles whose farthest
+    /// depth does not settle it.
+    fn hides(&self, c: &Check, [x0, y0, x1, y1]: [u16; 4], near: f32, slab: &Slab) -> bool {
+        let w = c.frame.width as usize;
         let (x0, y0, x1, y1) = (x0 as usize, y0 as usize, x1 as usize, y1 as usize);
+        let r = c.rays;
+        let [f, right, up] = [r.f, r.r, r.u].map(DVec3::from_array);
         for ty in y0 / TILE_H..=y1 / TILE_H {
             for tx in x0 / TILE_W..=x1 / TILE_W {
                 let far = self.far[ty * self.across + tx];
                 if far < near {
                     continue;
                 }
-                if far.is_nan() {
-                    return false;
-                }
-                let ys = (ty * TILE_H).max(y0)..=((ty + 1) * TILE_H - 1).min(y1);
-                let xs = (tx * TILE_W).max(x0)..=((tx + 1) * TILE_W - 1).min(x1);
-                for y in ys {
-                    if !frame.depth[y * w + xs.start()..=y * w + xs.end()]
-                        .iter()
-                        .all(|&t| t < near)
-                    {
-                        return false;
+                let tainted = far.is_nan();
+                for y in (ty * TILE_H).max(y0)..=((ty + 1) * TILE_H - 1).min(y1) {
+                    for x in (tx * TILE_W).max(x0)..=((tx + 1) * TILE_W - 1).min(x1) {
+                        let p = y * w + x;
+                        let covered = c.frame.depth[p] < near
+                            && !(tainted && c.redone.binary_search(&p).is_ok());
+                        if covered {
+                            continue;
+                        }
+                        if slab.meets(f + right * r.sx[x] + up * r.sy[y]) {
+                            return false;
+                        }
                     }
                 }
             }
         }
         true
     }
+}
+
+/// What the check of a cluster on trial reads: the frame, its re-decided pixels (ascending),
+/// and the view's f64 rays.
+struct Check<'a> {
+    frame: &'a Frame<f32>,
+    redone: &'a [usize],
+    rays: &'a crate::camera::RayTables<f64>,
 }
 
 /// A render's renderer (to hand its buffers back), its frame and re-decided pixels, and its

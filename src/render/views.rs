@@ -176,7 +176,7 @@ impl<'s> Views<'s> {
         let clusters = self.range.get().expect("built by the plan");
         let clock = std::time::Instant::now();
         let failed = if plan.on_trial() {
-            plan.failed(&done.frame, &done.redecided)
+            plan.failed(&done.frame, &done.redecided, camera)
         } else {
             Vec::new()
         };
