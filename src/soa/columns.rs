@@ -321,14 +321,19 @@ impl Packed {
                     // triangles four at a time (`triangles_x4`: the same constants), the
                     // others one by one; each store keeps its shapes' order
                     let mut four = Four::default();
-                    for (j, shape) in shapes.enumerate() {
-                        if left_out.is_some_and(|s| s.contains(first + j)) {
-                            continue;
-                        }
-                        let id = (first + j) as f32;
-                        match shape {
-                            Shape::Triangle(v) => four.add(v, id, &mut part.triangles, eye),
-                            other => part.push(other, id, eye),
+                    let mut add = |id: usize, shape: Shape| match shape {
+                        Shape::Triangle(v) => four.add(v, id as f32, &mut part.triangles, eye),
+                        other => part.push(other, id as f32, eye),
+                    };
+                    match left_out {
+                        None => shapes.enumerate().for_each(|(j, s)| add(first + j, s)),
+                        // only the runs of ids kept are read
+                        Some(set) => {
+                            for run in set.gaps(first..first + shapes.len()) {
+                                let at = run.start;
+                                let kept = scene.shapes.range(run).enumerate();
+                                kept.for_each(|(j, s)| add(at + j, s));
+                            }
                         }
                     }
                     four.flush(&mut part.triangles, eye);
