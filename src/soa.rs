@@ -297,7 +297,7 @@ impl IdSet {
             // the next id not in the set, then the next one in it
             while at < ids.end && self.contains(at) {
                 let word = self.bits.get(at / 64).copied().unwrap_or(0);
-                at = if at % 64 == 0 && word == u64::MAX {
+                at = if at.is_multiple_of(64) && word == u64::MAX {
                     at + 64
                 } else {
                     at + 1
@@ -309,7 +309,7 @@ impl IdSet {
             let start = at;
             while at < ids.end && !self.contains(at) {
                 let word = self.bits.get(at / 64).copied().unwrap_or(0);
-                at = if at % 64 == 0 && word == 0 {
+                at = if at.is_multiple_of(64) && word == 0 {
                     at + 64
                 } else {
                     at + 1
@@ -360,13 +360,13 @@ mod tests {
                     1 + rng.below(5) as usize
                 };
                 let into = rng.unit() < density;
-                for i in id..(id + run).min(n) {
+                for (i, w) in want.iter_mut().enumerate().take((id + run).min(n)).skip(id) {
                     if into {
                         set.insert(i);
                     } else {
                         set.remove(i);
                     }
-                    want[i] = into;
+                    *w = into;
                 }
                 id += run;
             }
