@@ -41,7 +41,7 @@
 //! limit); it settles nothing where `cos(phi + theta)` is small, which is the silhouette of a
 //! curved cluster, or where a cluster's faces turn through a right angle (a sharp edge, a
 //! thin part, a noisy scan) or lie far apart (a Morton run can jump between distant cells).
-//! Orbits of the seed scans settle 17% (armadillo), 11% (bunny) and 1% (teapot) of their
+//! Orbits of the seed scans settle 27% (armadillo), 21% (bunny) and 4% (teapot) of their
 //! clusters; of the armadillo subdivided three times, 99.8%.
 
 use super::range;
@@ -559,8 +559,8 @@ pub(crate) mod tests {
                     clusters.check(&scene, spec.eye).map_err(|e| e.to_string())
                 );
             }
-            // (the raw scans' faces turn sharply within a cluster: 17% of the armadillo's
-            // clusters settle, 11% of the bunny's, 1% of the teapot's; the subdivided
+            // (the raw scans' faces turn sharply within a cluster: 27% of the armadillo's
+            // clusters settle, 21% of the bunny's, 4% of the teapot's; the subdivided
             // armadillo's 99.8%, docs/performance.md)
             if name == "armadillo.sc" {
                 assert!(settled * 10 > total, "{name}: {settled} of {total} settled");
