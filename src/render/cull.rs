@@ -464,15 +464,35 @@ pub(crate) fn render_without<'s>(
     spare: super::renderer::Spare,
     left_out: Option<&IdSet>,
 ) -> crate::Result<Rendering<'s>> {
-    let clock = std::time::Instant::now();
+    let clock = Clock::start();
     let renderer = Renderer::with_spare(scene, camera, options, spare, left_out)?;
-    let setup = clock.elapsed().as_secs_f64();
-    let clock = std::time::Instant::now();
+    let setup = clock.secs();
+    let clock = Clock::start();
     let (frame, redone) = renderer.render_marking(None);
-    Ok((
-        renderer,
-        frame,
-        redone,
-        [setup, clock.elapsed().as_secs_f64()],
-    ))
+    Ok((renderer, frame, redone, [setup, clock.secs()]))
+}
+
+/// A stopwatch for a view's phases, reading 0 where the platform has no clock (WebAssembly in
+/// a browser, where `std::time::Instant` panics).
+pub(crate) struct Clock {
+    #[cfg(not(all(target_arch = "wasm32", target_os = "unknown")))]
+    start: std::time::Instant,
+}
+
+impl Clock {
+    /// Started now.
+    pub(crate) fn start() -> Clock {
+        Clock {
+            #[cfg(not(all(target_arch = "wasm32", target_os = "unknown")))]
+            start: std::time::Instant::now(),
+        }
+    }
+
+    /// Seconds since the start (0 without a clock).
+    pub(crate) fn secs(&self) -> f64 {
+        #[cfg(not(all(target_arch = "wasm32", target_os = "unknown")))]
+        return self.start.elapsed().as_secs_f64();
+        #[cfg(all(target_arch = "wasm32", target_os = "unknown"))]
+        0.0
+    }
 }

@@ -55,7 +55,8 @@ pub struct Rendered {
     pub frame: Frame<f32>,
     /// The pixels `--precision auto` decided again in f64 (row-major indices, ascending).
     pub redecided: Vec<usize>,
-    /// Seconds of setup (stores, tiles; the culling's plan and checks) and of render.
+    /// Seconds of setup (stores, tiles; the culling's plan and checks) and of render (0 in a
+    /// browser, which has no clock).
     pub setup_s: f64,
     /// Seconds of rendering (and merging a second render in, where one was needed).
     pub render_s: f64,
@@ -174,23 +175,23 @@ impl<'s> Views<'s> {
         mut done: Rendered,
     ) -> Result<Rendered> {
         let clusters = self.range.get().expect("built by the plan");
-        let clock = std::time::Instant::now();
+        let clock = cull::Clock::start();
         let failed = if plan.on_trial() {
             plan.failed(&done.frame, &done.redecided, camera)
         } else {
             Vec::new()
         };
-        done.setup_s += clock.elapsed().as_secs_f64();
+        done.setup_s += clock.secs();
         if !failed.is_empty() {
             let f_redone = std::mem::take(&mut done.redecided);
             let width = camera.width as usize;
-            let clock = std::time::Instant::now();
+            let clock = cull::Clock::start();
             let spare = std::mem::take(&mut state.sets[1]);
             let second = plan.second(clusters, &failed, (&f_redone, width), &[], spare);
-            done.setup_s += clock.elapsed().as_secs_f64();
+            done.setup_s += clock.secs();
             let (g, g_redone) = self.touch_up(state, camera, &second.left_out, &mut done)?;
             done.renders = 2;
-            let clock = std::time::Instant::now();
+            let clock = cull::Clock::start();
             let (mut known, mut h_redone) = (Vec::new(), Vec::new());
             let mut merged = cull::merge(
                 &mut done.frame,
@@ -200,7 +201,7 @@ impl<'s> Views<'s> {
                 &failed,
                 &known,
             );
-            done.render_s += clock.elapsed().as_secs_f64();
+            done.render_s += clock.secs();
             if let Err(unsettled) = &merged {
                 // the pixels neither frame holds: rendered with every cluster that may be hit there
                 let set = plan.only_at(clusters, (unsettled, width), IdSet::default());
