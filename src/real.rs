@@ -113,3 +113,7 @@ pub fn f32_up(x: f64) -> f32 {
 /// The f32 unit roundoff u = 2^-24 as an f64: the unit of every f32 error bound (the kernels,
 /// the tiles' margins, `--precision auto`'s limits, `compare`'s edge band).
 pub const U32: f64 = <f32 as Real>::UNIT_ROUNDOFF as f64;
+
+/// The f64 unit roundoff u = 2^-53: the unit of the f64 setup's error bounds (the range
+/// check, the clusters' bounds).
+pub const U64: f64 = <f64 as Real>::UNIT_ROUNDOFF;

@@ -4,12 +4,13 @@
 //! already drawn hides (`render::cull`).
 //!
 //! A face's own screen region can be a strip across the image (a sliver seen edge-on,
-//! `accel::reach`), so a cluster's bounding sphere does not hold its faces' pixels in general.
-//! It does once the eye is off every face's plane. Derivation, u = 2^-24, `u64` = 2^-53:
+//! `accel::reach`), so a box around a cluster's vertices does not hold its faces' pixels in
+//! general. It does once widened, when the eye is off every face's plane. Derivation,
+//! u = 2^-24, `u64` = 2^-53:
 //!
-//! - The cluster's faces lie in the sphere `(c, rho)`; from the eye, every face's exact plane
-//!   is at least `h > 0` away and every vertex at most `reach` (`Gap`, from the cluster's cone
-//!   of normals). `kappa = h / reach`.
+//! - The cluster's vertices lie in a box (`Gap`: about `c`, in the frame of the cluster's
+//!   normal axis); from the eye, every face's exact plane is at least `h > 0` away and every
+//!   vertex at most `reach` (from the cluster's cone of normals). `kappa = h / reach`.
 //! - Every ray a kernel accepts on a face has `n . d >= -E` for each edge plane of its stored
 //!   f32 normals `n` (`accel::reach`, `d` the pixel's exact ray). A stored normal lies within
 //!   `beta = 32 u64 / s + 2u` of the exact plane through the eye and the edge (its f64 cross
@@ -23,36 +24,36 @@
 //!   the face widened by `w = E' t / kappa` on every edge, which is the face scaled about its
 //!   incentre by `1 + w / r`, within `Q w` of the face (`Q`, the cluster's quality: the
 //!   farthest vertex from the incentre over the inradius). With `g = Q E' / kappa < 1`, the
-//!   point lies within `rho + g t` of `c` and `t <= t_max = reach / (1 - g)`: every accepted
-//!   ray passes within `rho' = rho + g t_max` of `c`. (The accepted directions form a convex
-//!   cone whose cut by the plane is bounded, so none runs parallel to it.)
-//! - The pixels: those whose rays meet the cube of half size `rho'` about `c`, the projection
-//!   of its corners (`footprint::Screen::rect`, as a sphere's): none when it is off screen or
-//!   wholly behind the eye, the whole image when a corner is not in front.
-//! - `near`: the ray meets the exact plane at `t* >= L - rho'` (`L = |c - eye|`). The kernel
+//!   point lies within `g t` of a face, so `t <= reach + g t`, `t <= t_max = reach / (1 - g)`,
+//!   and the point lies in the box widened by `g t_max` on every side (the slab the ray meets:
+//!   [`Slab`]). (The accepted directions form a convex cone whose cut by the plane is bounded,
+//!   so none runs parallel to it.)
+//! - The pixels: those whose rays meet the widened box, within the projection of its corners
+//!   (`footprint::Screen::rect`): none when it is off screen or wholly behind the eye, the whole
+//!   image when a corner is not in front.
+//! - `near`: the ray meets the exact plane at `t*` no nearer than the widened box, `t* >= L`
+//!   (`L` the eye's distance from the box, less its rounding, `4 u64 reach`). The kernel
 //!   returns `fl(p32 / c32)` with `c32 <= N . d + e_c` (`accel::reach`), the stored `N` within
 //!   `delta + 2u` of the exact normal (`Gap::delta`), `p32 >= (p* - reach (delta + 4 u64))
 //!   (1 - u)`, and `N* . d = p* / t*` with `p* >= h`: so every distance a kernel returns is at
-//!   least `(L - rho') (1 - reach (delta + 4 u64) / h) (1 - 2u) / (1 + (e_c + delta + 2u)
+//!   least `L (1 - reach (delta + 4 u64) / h) (1 - 2u) / (1 + (e_c + delta + 2u)
 //!   t_max / h)`; the f64 kernels' distances lie closer to `t*` still.
 //!
 //! Precision assumed: the f32 packet kernels and the f64 ones, fed by eye-relative f64 setup
 //! (`soa`), in the limits `scene::range::f32_range` accepts. Known to give nothing (the
-//! cluster is kept, never left out): an eye near any face's plane or inside the sphere `rho'`
+//! cluster is kept, never left out): an eye near any face's plane or inside the widened box
 //! (the silhouette of a curved cluster; a camera inside the mesh), `g >= 1/2` (slivers seen
 //! from far off with a narrow field of view, where `E` grows). Proven by the tests below: over
 //! random clusters, cameras (fields of view 1e-3 to 170 degrees) and scales, every pixel a
-//! face's kernel accepts lies in the cluster's rectangle at a distance no nearer than its
-//! `near`.
+//! face's kernel accepts lies in the cluster's rectangle, meets its widened box, and is no
+//! nearer than its `near`.
 
 use super::footprint::{Screen, near_f32};
 use super::reach::SLACK;
 use crate::camera::Camera;
-use crate::real::U32;
+use crate::real::{U32, U64};
 use crate::scene::range_clusters::{Gap, frame};
 use glam::DVec3;
-
-const U64: f64 = f64::EPSILON / 2.0;
 
 /// Where a cluster's faces can be hit from one view.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -143,10 +144,9 @@ impl ClusterScreen {
             return Reach::Unbounded;
         }
         let t_max = reach / (1.0 - g) * (1.0 + SLACK);
-        // the box widened by `g t_max` (and its coordinates' rounding), about the centre
-        let m = DVec3::splat((g * t_max + 1e-9 * reach) * (1.0 + SLACK));
-        // (and a relative 1e-9 of the farthest distance over the slab test's own rounding)
-        let m = m + DVec3::splat(1e-9 * reach);
+        // the box widened by `g t_max`, and by 1e-9 of the farthest distance for the
+        // rounding of its coordinates and of the slab test
+        let m = DVec3::splat((g * t_max + 2e-9 * reach) * (1.0 + SLACK));
         let (lo, hi) = (lo - m, hi + m);
         let f = frame(axis);
         let oc = centre - v.eye;

@@ -113,7 +113,7 @@ fn polygon_f32<const N: usize>(v: &[DVec3; N], eye: DVec3, kw: &str) -> Result<(
 /// included (`the_quick_range_test_accepts_only_what_the_exact_one_does`).
 #[inline]
 fn surely_in_range<const N: usize>(v: &[DVec3; N], rel: &[DVec3; N]) -> bool {
-    const U: f64 = f64::EPSILON / 2.0;
+    use crate::real::U64 as U;
     const FAR2: f64 = (MAX_EYE_DISTANCE / 2.0) * (MAX_EYE_DISTANCE / 2.0);
     const SIN: f64 = 2.0 * MIN_EDGE_ANGLE + 16.0 * U;
     let one = |x: DVec3| x.x.abs() + x.y.abs() + x.z.abs();

@@ -54,7 +54,7 @@ use glam::DVec3;
 /// Primitives per cluster: consecutive ids.
 pub const CLUSTER: usize = 64;
 
-const U: f64 = f64::EPSILON / 2.0;
+use crate::real::U64 as U;
 
 /// One cluster's camera-independent bound (module comment).
 #[derive(Debug, Clone, Copy)]
@@ -83,7 +83,7 @@ pub(crate) fn frame(axis: DVec3) -> [DVec3; 3] {
 }
 
 /// What a view needs of one cluster to bound where its faces can be hit
-/// (`accel::clusters`): its sphere, its faces' shape quality and shortest edge, and how far
+/// (`accel::clusters`): its box, its faces' shape quality and shortest edge, and how far
 /// the eye is from the faces' planes.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Gap {
