@@ -56,7 +56,7 @@ use crate::scene::range_clusters::RangeClusters;
 use crate::soa::IdSet;
 use glam::DVec3;
 
-/// Only clusters whose sphere is widened by at most this fraction of their distance
+/// Only clusters whose box is widened by at most this fraction of their distance
 /// (`accel::clusters`: `g`) are left out on trial. The others, the silhouette's (an eye
 /// nearly in some face's plane), have a `near` far before their faces and would fail.
 const TRIAL_G: f64 = 1e-4;
@@ -206,26 +206,21 @@ impl Plan {
 
     /// The second render for the clusters `failed`, after the first frame's re-decided
     /// pixels `redone` (width `width`): the failed clusters and, where a failed one's
-    /// rectangle holds a re-decided pixel, and at the pixels `also`, every cluster that may
-    /// be hit there (the loose ones, the kept ones whose rectangle holds it).
+    /// rectangle holds a re-decided pixel, every cluster that may be hit there (the loose
+    /// ones, the kept ones whose rectangle holds it).
     pub(crate) fn second(
         &self,
         clusters: &RangeClusters,
         failed: &[Trial],
         (redone, width): (&[usize], usize),
-        also: &[usize],
         spare: IdSet,
     ) -> Second {
-        let mut complete: Vec<usize> = (redone.iter().copied())
+        let complete: Vec<usize> = (redone.iter().copied())
             .filter(|&p| failed.iter().any(|&(_, rect, _)| inside(p, width, rect)))
-            .chain(also.iter().copied())
             .collect();
-        complete.sort_unstable();
-        complete.dedup();
         let kept = (self.kept.iter())
             .filter(|&&(_, rect)| complete.iter().any(|&p| inside(p, width, rect)))
             .map(|&(k, _)| k);
-        let mut left_out = IdSet::full_in(clusters.ids_len(), spare);
         // (the loose clusters only where some pixel needs them all)
         let loose = if complete.is_empty() {
             &[][..]
@@ -235,11 +230,7 @@ impl Plan {
         let rendered = (failed.iter().map(|&(k, ..)| k))
             .chain(loose.iter().copied())
             .chain(kept);
-        for k in rendered {
-            for &id in clusters.cluster(k as usize) {
-                left_out.remove(id as usize);
-            }
-        }
+        let left_out = all_but(clusters, rendered, spare);
         Second { left_out, complete }
     }
 
@@ -256,14 +247,20 @@ impl Plan {
         let rendered = (self.trials.iter().filter(|t| holds(t.1)).map(|t| t.0))
             .chain(self.kept.iter().filter(|k| holds(k.1)).map(|k| k.0))
             .chain(self.loose.iter().copied());
-        let mut left_out = IdSet::full_in(clusters.ids_len(), spare);
-        for k in rendered {
-            for &id in clusters.cluster(k as usize) {
-                left_out.remove(id as usize);
-            }
-        }
-        left_out
+        all_but(clusters, rendered, spare)
     }
+}
+
+/// Every id but those of the clusters `rendered`, in `spare`'s buffer: what a render of those
+/// clusters alone leaves out.
+fn all_but(clusters: &RangeClusters, rendered: impl Iterator<Item = u32>, spare: IdSet) -> IdSet {
+    let mut left_out = IdSet::full_in(clusters.ids_len(), spare);
+    for k in rendered {
+        for &id in clusters.cluster(k as usize) {
+            left_out.remove(id as usize);
+        }
+    }
+    left_out
 }
 
 /// Whether pixel `p` (row-major, `width` wide) lies in `rect`.

@@ -35,15 +35,15 @@ pub struct Views<'s> {
     /// The buffers the next view fills: the last frame handed back ([`Views::recycle`]) and
     /// those of the last renderer handed back ([`Views::give_back`]).
     spare: Mutex<Spare>,
-    /// What the culling keeps between views: the ids the last view showed, the buffers of
-    /// the renders of clusters that failed their check, and spare id sets.
+    /// What the culling keeps between views: the ids the last view showed, the frame of the
+    /// last second render, and spare id sets.
     cull: Mutex<CullState>,
 }
 
 #[derive(Default)]
 struct CullState {
     last: Option<IdSet>,
-    touch: Spare,
+    touch: Option<Frame<f32>>,
     sets: [IdSet; 2],
 }
 
@@ -69,7 +69,8 @@ pub struct Rendered {
     /// Primitives the view left out (clusters off screen, and clusters proven hidden).
     pub left_out: usize,
     /// Renders the view took: 1; 2 when clusters left out on trial were not hidden and were
-    /// rendered alone and merged in; 3 when that merge fell back to a render of all.
+    /// rendered in a second frame merged in; 3 when a third render gave the few re-decided
+    /// pixels neither frame holds (`render::cull`, step 4).
     pub renders: usize,
 }
 
@@ -188,20 +189,16 @@ impl<'s> Views<'s> {
             let width = camera.width as usize;
             let clock = cull::Clock::start();
             let spare = std::mem::take(&mut state.sets[1]);
-            let second = plan.second(clusters, &failed, (&f_redone, width), &[], spare);
+            let second = plan.second(clusters, &failed, (&f_redone, width), spare);
             done.setup_s += clock.secs();
             let (g, g_redone) = self.touch_up(state, camera, &second.left_out, &mut done)?;
             done.renders = 2;
             let clock = cull::Clock::start();
             let (mut known, mut h_redone) = (Vec::new(), Vec::new());
-            let mut merged = cull::merge(
-                &mut done.frame,
-                &f_redone,
-                (&g, &g_redone),
-                &second,
-                &failed,
-                &known,
-            );
+            let merge = |frame: &mut Frame<f32>, known: &[cull::Pixel]| {
+                cull::merge(frame, &f_redone, (&g, &g_redone), &second, &failed, known)
+            };
+            let mut merged = merge(&mut done.frame, &known);
             done.render_s += clock.secs();
             if let Err(unsettled) = &merged {
                 // the pixels neither frame holds: rendered with every cluster that may be hit there
@@ -210,19 +207,12 @@ impl<'s> Views<'s> {
                 h_redone = redone;
                 done.renders = 3;
                 known.extend(unsettled.iter().map(|&p| (p, (h.ids[p], h.depth[p]))));
-                state.touch.frame = Some(h);
-                merged = cull::merge(
-                    &mut done.frame,
-                    &f_redone,
-                    (&g, &g_redone),
-                    &second,
-                    &failed,
-                    &known,
-                );
+                state.touch = Some(h);
+                merged = merge(&mut done.frame, &known);
             }
             done.redecided =
                 cull::merged_redone(&f_redone, [&g_redone, &h_redone], &second, &known);
-            state.touch.frame = Some(g);
+            state.touch = Some(g);
             state.sets[1] = second.left_out;
             // (the second merge takes every unsettled pixel from `known`: it cannot fail)
             merged.expect("every unsettled pixel has its value");
@@ -235,8 +225,9 @@ impl<'s> Views<'s> {
         Ok(done)
     }
 
-    /// Renders `camera` without the primitives of `left_out` into the buffers kept for second
-    /// renders, adding its times to `done`: the frame and its re-decided pixels.
+    /// Renders `camera` without the primitives of `left_out` (a second or third render, into
+    /// the frame kept for those), adding its times to `done`: the frame and its re-decided
+    /// pixels.
     fn touch_up(
         &self,
         state: &mut CullState,
@@ -245,7 +236,7 @@ impl<'s> Views<'s> {
         done: &mut Rendered,
     ) -> Result<(Frame<f32>, Vec<usize>)> {
         let touch = Spare {
-            frame: state.touch.frame.take(),
+            frame: state.touch.take(),
             ..Spare::default()
         };
         let (renderer, frame, redone, [s, r]) =
