@@ -48,6 +48,9 @@ pub struct ViewTimes {
     /// Each rendered view's (setup, render, output) times, in order: setup prepares the scene
     /// for its camera, render traces its rays, output shades, encodes, writes and commits.
     pub each: Vec<[f64; 3]>,
+    /// Each rendered view's primitives left out and renders taken (`Rendered::left_out`,
+    /// `Rendered::renders`), parallel to `each`.
+    pub culled: Vec<[usize; 2]>,
     /// Views left out by `--skip-existing`.
     pub skipped: usize,
 }
@@ -219,10 +222,11 @@ impl Stats {
         });
         let mut record = record;
         if let Some(v) = &self.views {
-            let each: Vec<_> = v
-                .each
-                .iter()
-                .map(|t| serde_json::json!({"setup_s": t[0], "render_s": t[1], "output_s": t[2]}))
+            let each: Vec<_> = (v.each.iter().zip(&v.culled))
+                .map(|(t, c)| {
+                    serde_json::json!({"setup_s": t[0], "render_s": t[1], "output_s": t[2],
+                        "left_out": c[0], "renders": c[1]})
+                })
                 .collect();
             record["views"] = serde_json::json!({
                 "rendered": v.each.len(),

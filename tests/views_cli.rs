@@ -242,6 +242,18 @@ fn skip_existing_renders_only_missing_views() {
     let stats: serde_json::Value = serde_json::from_slice(&read(&dir.join("s.json"))).unwrap();
     assert_eq!(stats["views"]["rendered"], 2);
     assert_eq!(stats["views"]["skipped"], 3);
+    // each rendered view records what it left out and how many renders it took; the first
+    // view of a run has nothing to guess from and leaves nothing out
+    let each = stats["views"]["each"].as_array().unwrap();
+    assert_eq!(each.len(), 2);
+    assert_eq!(
+        (each[0]["left_out"].as_u64(), each[0]["renders"].as_u64()),
+        (Some(0), Some(1))
+    );
+    assert!(
+        each.iter()
+            .all(|v| v["renders"].as_u64().is_some_and(|r| (1..=3).contains(&r)))
+    );
     assert_eq!(
         read(&dir.join("i0.npy")),
         b"kept",

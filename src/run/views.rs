@@ -233,6 +233,7 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
             let mut set = OutputSet::create(&outputs, &[])?;
             let view = views.render_marking(camera)?;
             let (frame, setup, render) = (view.frame, view.setup_s, view.render_s);
+            times.culled.push([view.left_out, view.renders]);
             if view.redecides {
                 *stats.redecided.get_or_insert(0) += view.redecided.len();
             }
