@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::Rng;
+use common::{Rng, bounds};
 use glam::DVec3;
 use lanecast::Accel;
 use lanecast::Camera;
@@ -78,23 +78,6 @@ fn scaled(scene: &Scene, s: f64) -> Scene {
         shapes,
         warnings: Vec::new(),
     }
-}
-
-/// The centre and the diagonal of `scene`'s bounding box.
-fn bounds(scene: &Scene) -> (DVec3, f64) {
-    let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
-    let mut grow = |p: DVec3| (lo, hi) = (lo.min(p), hi.max(p));
-    for shape in scene.shapes.iter() {
-        match shape {
-            Shape::Sphere { center, radius } => {
-                grow(center - DVec3::splat(radius));
-                grow(center + DVec3::splat(radius));
-            }
-            Shape::Triangle(v) => v.iter().for_each(|&p| grow(p)),
-            Shape::Quad(v) => v.iter().for_each(|&p| grow(p)),
-        }
-    }
-    ((lo + hi) / 2.0, (hi - lo).length())
 }
 
 /// A random camera for a scene of centre `c` and size `size`, with its fov: mostly telephoto

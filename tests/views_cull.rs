@@ -10,7 +10,7 @@
 
 mod common;
 
-use common::{Rng, icosphere};
+use common::{Rng, bounds, icosphere};
 use glam::DVec3;
 use lanecast::scene::views::orbit;
 use lanecast::scene::{CameraSpec, Scene, Shape, Shapes};
@@ -58,25 +58,11 @@ fn spheres_scene() -> Scene {
     scene
 }
 
-/// The centre and radius of the scene's primitives' vertices (spheres by their centres).
-fn extent(scene: &Scene) -> (DVec3, f64) {
-    let points: Vec<DVec3> = (scene.shapes.iter())
-        .flat_map(|s| match s {
-            Shape::Sphere { center, .. } => vec![center],
-            Shape::Triangle(v) => v.to_vec(),
-            Shape::Quad(v) => v.to_vec(),
-        })
-        .collect();
-    let (lo, hi) = (points.iter()).fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| {
-        (lo.min(*p), hi.max(*p))
-    });
-    ((lo + hi) / 2.0, (hi - lo).length() / 2.0)
-}
-
 /// Cameras: a slow orbit, random jumps from inside the scene to four radii off, and a dolly
 /// from far off to the centre.
 fn paths(scene: &Scene, rng: &mut Rng) -> Vec<Vec<CameraSpec>> {
-    let (centre, radius) = extent(scene);
+    let (centre, diagonal) = bounds(scene);
+    let radius = diagonal / 2.0;
     let slow = orbit(&scene.camera, 48).into_iter().take(10).collect();
     let jumps = (0..8)
         .map(|_| CameraSpec {

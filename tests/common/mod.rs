@@ -510,3 +510,20 @@ pub fn head_on(plane_z: f64, dist: f64, size: u32, step: f64) -> CameraSpec {
         fov,
     )
 }
+
+/// The centre and the diagonal of `scene`'s bounding box.
+pub fn bounds(scene: &Scene) -> (DVec3, f64) {
+    let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+    let mut grow = |p: DVec3| (lo, hi) = (lo.min(p), hi.max(p));
+    for shape in scene.shapes.iter() {
+        match shape {
+            Shape::Sphere { center, radius } => {
+                grow(center - DVec3::splat(radius));
+                grow(center + DVec3::splat(radius));
+            }
+            Shape::Triangle(v) => v.iter().for_each(|&p| grow(p)),
+            Shape::Quad(v) => v.iter().for_each(|&p| grow(p)),
+        }
+    }
+    ((lo + hi) / 2.0, (hi - lo).length())
+}
