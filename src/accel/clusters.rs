@@ -135,6 +135,7 @@ impl ClusterScreen {
             delta,
             h,
             reach,
+            ..
         } = *gap;
         let kappa = h / reach;
         let beta = 32.0 * U64 * reach * reach / (shortest * h) + 2.0 * U32;

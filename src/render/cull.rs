@@ -1,16 +1,18 @@
 //! Many views leave out what they cannot see: whole clusters of 64 triangles
-//! (`scene::range_clusters`) that no ray of the view reaches (off screen, behind the eye), and,
-//! from the second view on, clusters that the last view did not show and that the view's own
-//! frame proves hidden. A view's ids, depths and re-decided pixels stay those of a render of
+//! (`scene::range_clusters`) that no ray of the view reaches (off screen, behind the eye), and
+//! clusters that face away from the eye or that the last view did not show, once the view's
+//! own frame proves them hidden. A view's ids, depths and re-decided pixels stay those of a render of
 //! every primitive (a one-view run with the same camera), bit for bit.
 //!
 //! Per view (`Views::render_marking`):
 //!
 //! 1. Each cluster's reach from the eye (`accel::clusters`): the pixels on which any kernel can
 //!    accept one of its faces, and a distance `near` below every distance it can return there.
-//!    A cluster on no pixel is left out. A cluster the last view showed none of, with a
-//!    tightly bounded reach ([`TRIAL_G`]), is left out *on trial*, when the trials are worth
-//!    it ([`TRIALS_MIN`]). Every other cluster is *kept*; one with no bounded reach is *loose*.
+//!    A cluster on no pixel is left out. A cluster with a tightly bounded reach
+//!    ([`TRIAL_G`]) that faces away from the eye (every face seen from behind its winding, as
+//!    a closed surface's far side is), or that the last view showed none of from an eye near
+//!    enough ([`PARALLAX`]), is left out *on trial*, when the trials are worth it
+//!    ([`TRIALS_MIN`]). Every other cluster is *kept*; one with no bounded reach is *loose*.
 //! 2. The kept clusters are rendered as usual (`Renderer`, the stores and tiles of those
 //!    primitives alone): the frame `F`, and the pixels whose f32 hit `--precision auto`
 //!    re-decided.
@@ -37,9 +39,9 @@
 //!      then `F`'s, trusted); otherwise a third render `H` of every cluster a kernel may hit at
 //!      those pixels (`Plan::only_at`) gives them alone.
 //!
-//! What the last view showed is a guess, and the check makes any guess safe: a bad guess
-//! costs the second render, never a wrong pixel. The first view renders every primitive; views
-//! whose options take no tiles (other kernels, methods, accelerations) render every primitive
+//! Facing away and what the last view showed are guesses, and the check makes any guess safe:
+//! a bad guess (an open surface's back, a mesh wound inconsistently) costs the second render,
+//! never a wrong pixel. Views whose options take no tiles (other kernels, methods, accelerations) render every primitive
 //! (through `Views`, not this module). Tests: `tests/views_cull.rs` holds every view of slow
 //! orbits, random jumps and dollies on the seed scans and on subdivided spheres, with `auto`
 //! and `f32`, to a renderer of its own, ids, depths and re-decided pixels; `accel::clusters`
@@ -71,6 +73,11 @@ const TRIALS_MIN: f64 = 0.25;
 /// See [`TRIALS_MIN`].
 const LOOSE_MAX: f64 = 0.4;
 
+/// What the last view showed is a guess at a cluster's view only from an eye at most this
+/// fraction of the cluster's distance from the last view's eye (about 14 degrees of
+/// parallax): from farther, the surfaces that hid it from the last view no longer line up.
+const PARALLAX: f64 = 0.25;
+
 /// A cluster left out on trial: its index, pixel rectangle and `near`.
 type Trial = (u32, [u16; 4], f32);
 
@@ -98,12 +105,13 @@ pub(crate) struct Second {
 }
 
 impl Plan {
-    /// The plan for `camera`: clusters on no pixel, and, where `last` (the ids the last view
-    /// showed) is given, the clusters with a bounded reach that showed none of them, on trial.
+    /// The plan for `camera`: clusters on no pixel, and, on trial, the clusters with a bounded
+    /// reach that face away from the eye or, where `last` (the ids the last view showed, and
+    /// its eye) is given, that showed none of them from near enough.
     pub(crate) fn new(
         clusters: &RangeClusters,
         camera: &Camera,
-        last: Option<&IdSet>,
+        last: Option<(&IdSet, DVec3)>,
         spare: IdSet,
     ) -> Plan {
         let screen = ClusterScreen::new(camera);
@@ -115,17 +123,18 @@ impl Plan {
                     return Reach::Unbounded;
                 };
                 let reach = screen.reach(&gap);
-                let seen = || {
-                    last.is_none_or(|s| {
-                        clusters
-                            .cluster(k)
-                            .iter()
-                            .any(|&id| s.contains(id as usize))
-                    })
+                // the guess: facing away, or, seen from near the last view's eye, showing none
+                // of its faces there
+                let hidden = || {
+                    gap.back
+                        || last.is_some_and(|(s, last_eye)| {
+                            last_eye.distance(eye) <= PARALLAX * gap.centre.distance(eye)
+                                && !(clusters.cluster(k).iter()).any(|&id| s.contains(id as usize))
+                        })
                 };
                 match reach {
                     // (a kept cluster is told from one on trial by `near`: NaN)
-                    Reach::Pixels(rect, _, g, slab) if g > TRIAL_G || seen() => {
+                    Reach::Pixels(rect, _, g, slab) if g > TRIAL_G || !hidden() => {
                         Reach::Pixels(rect, f32::NAN, g, slab)
                     }
                     r => r,

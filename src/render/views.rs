@@ -7,8 +7,8 @@
 //! renders it: ids and depths are bit-identical to `lanecast -i SCENE` with that camera, at any
 //! thread count (tests/views.rs). What depends on the camera (the eye-relative primitive
 //! constants, the tiles' bins) is built per view; what does not (the scene, its validation, the
-//! range check's cluster bounds) is done once. From the second view on, a view leaves out the
-//! clusters of triangles it proves it cannot see (`render::cull`).
+//! range check's cluster bounds) is done once. A view leaves out the clusters of triangles it
+//! proves it cannot see (`render::cull`).
 
 use super::cull::{self, Plan};
 use super::renderer::Spare;
@@ -29,8 +29,8 @@ use std::sync::{Mutex, OnceLock};
 pub struct Views<'s> {
     scene: &'s Scene,
     options: Options,
-    /// The f32 range check's cluster bounds, built by the first view whose eye is not the
-    /// scene's (`scene::range_clusters`).
+    /// The f32 range check's cluster bounds (`scene::range_clusters`), built by the first view
+    /// whose eye is not the scene's or that culls (`render::cull`).
     range: OnceLock<RangeClusters>,
     /// The buffers the next view fills: the last frame handed back ([`Views::recycle`]) and
     /// those of the last renderer handed back ([`Views::give_back`]).
@@ -43,6 +43,7 @@ pub struct Views<'s> {
 #[derive(Default)]
 struct CullState {
     last: Option<IdSet>,
+    last_eye: glam::DVec3,
     touch: Option<Frame<f32>>,
     sets: [IdSet; 2],
 }
@@ -120,8 +121,8 @@ impl<'s> Views<'s> {
     }
 
     /// [`Views::render`] without the range check (call [`Views::check`] first), also giving
-    /// the pixels re-decided in f64 and what the view took. From the second view on, with the
-    /// tiles and the packet kernel's default method, the view leaves out the clusters of
+    /// the pixels re-decided in f64 and what the view took. With the tiles and the packet
+    /// kernel's default method, the view leaves out the clusters of
     /// triangles it proves it cannot see (`render::cull`); the ids and depths are a render of
     /// every primitive's, bit for bit. Views render one at a time: each reads what the one
     /// before showed.
@@ -129,15 +130,13 @@ impl<'s> Views<'s> {
         let mut guard = self.cull.lock().unwrap_or_else(|e| e.into_inner());
         let state = &mut *guard;
         let culls = cull::applies(&self.options, self.scene);
-        // the first view shows what the second may leave out; nothing is left out before
-        let plan = match &state.last {
-            Some(last) if culls => {
-                let clusters = self.range.get_or_init(|| RangeClusters::new(self.scene));
-                let set = std::mem::take(&mut state.sets[0]);
-                Some(Plan::new(clusters, camera, Some(last), set))
-            }
-            _ => None,
-        };
+        // each view shows what the next may leave out; the first guesses from the faces alone
+        let plan = culls.then(|| {
+            let clusters = self.range.get_or_init(|| RangeClusters::new(self.scene));
+            let set = std::mem::take(&mut state.sets[0]);
+            let last = state.last.as_ref().map(|s| (s, state.last_eye));
+            Plan::new(clusters, camera, last, set)
+        });
         let spare = self.take_spare();
         let left_out = plan.as_ref().map(|p| &p.left_out);
         let (renderer, frame, redone, [setup, render]) =
@@ -161,6 +160,7 @@ impl<'s> Views<'s> {
             let spare = state.last.take().unwrap_or_default();
             let n = self.scene.shapes.len();
             state.last = Some(cull::shown(&done.frame, n, spare));
+            state.last_eye = camera.eye;
         }
         Ok(done)
     }

@@ -74,6 +74,9 @@ struct Bound {
     /// least and greatest coordinates (widened by `1e-9 rho` for their rounding).
     lo: DVec3,
     hi: DVec3,
+    /// +1 when every face's normal by its winding (`(B - A) x (C - A)`) lies on `+axis`'s
+    /// side, -1 when every one lies on `-axis`'s, 0 when they differ.
+    winding: f64,
 }
 
 /// The orthonormal frame of a cluster's box: two directions across `axis`, then `axis`.
@@ -102,6 +105,11 @@ pub(crate) struct Gap {
     /// bound on its distance from every vertex.
     pub(crate) h: f64,
     pub(crate) reach: f64,
+    /// Whether the eye sees every face from behind (the side against its winding's normal):
+    /// with the eye off every face's plane and one winding throughout, the cluster faces
+    /// away. For a closed surface wound one way, such a cluster lies behind the surface's
+    /// front (a guess `render::cull` checks, never trusts).
+    pub(crate) back: bool,
 }
 
 /// The clusters of one scene: its primitives' ids in space order, [`CLUSTER`] at a time, and
@@ -219,6 +227,7 @@ impl RangeClusters {
             delta: b.delta,
             h,
             reach,
+            back: b.winding * (eye - b.centre).dot(b.axis) < 0.0,
         })
     }
 
@@ -361,6 +370,12 @@ impl Bound {
             .map(|n| if n.dot(n0) < 0.0 { -*n } else { *n })
             .sum();
         let axis = sum.normalize_or_zero();
+        let side = |n: &DVec3| n.dot(axis).signum();
+        let winding = if normals.iter().all(|n| side(n) == side(&n0)) {
+            side(&n0)
+        } else {
+            0.0
+        };
         let cos_min = normals
             .iter()
             .map(|n| n.dot(axis).abs())
@@ -387,6 +402,7 @@ impl Bound {
             quality,
             lo,
             hi,
+            winding,
         };
         let finite = [centre, axis, lo, hi].iter().all(|v| v.is_finite())
             && [rho, shortest, delta].iter().all(|x| x.is_finite());

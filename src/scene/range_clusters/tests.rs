@@ -116,6 +116,71 @@ fn a_settled_cluster_holds_only_faces_the_exact_rules_pass() {
     assert!(refused > 50, "{refused} refused");
 }
 
+/// `Gap::back` over random sheets (some with faces wound against the rest) and eyes: a
+/// cluster said to face away is seen from behind by every face (the eye on the side against
+/// each face's winding normal), a cluster of one winding not said to face away is seen from
+/// the front by every face, and a cluster of mixed windings never faces away.
+#[test]
+fn a_cluster_faces_away_when_every_face_is_seen_from_behind() {
+    let mut rng = Rng(0xBAC4_FACE);
+    let (mut back, mut front, mut mixed) = (0, 0, 0);
+    for case in 0..300 {
+        let size = rng.log(-6.0, 6.0);
+        let centre = rng.direction() * size * rng.log(0.0, 3.0);
+        let mut mesh = sheet(&mut rng, 12, size, centre);
+        if case % 3 == 0 {
+            for f in mesh.faces.iter_mut().filter(|_| rng.unit() < 0.05) {
+                f.swap(1, 2);
+            }
+        }
+        let mut scene = crate::parse_scene(
+            "camera eye 0 0 0 look 0 0 -1 up 0 1 0
+",
+            Path::new("b.sc"),
+        )
+        .unwrap();
+        scene.shapes = Shapes::new();
+        scene.shapes.push_mesh(mesh, 1);
+        let clusters = RangeClusters::new(&scene);
+        let eye = centre + rng.direction() * size * 12.0 * rng.log(-1.0, 3.0);
+        for k in 0..clusters.len() {
+            let Some(gap) = clusters.gap(k, eye) else {
+                continue;
+            };
+            let sides: Vec<f64> = (clusters.cluster(k).iter())
+                .map(|&id| match scene.shapes.get(id as usize) {
+                    Shape::Triangle(v) => (eye - v[0]).dot((v[1] - v[0]).cross(v[2] - v[0])),
+                    _ => unreachable!("a mesh holds triangles"),
+                })
+                .collect();
+            let one_winding = clusters.bounds[k].unwrap().winding != 0.0;
+            if gap.back {
+                assert!(
+                    sides.iter().all(|&s| s < 0.0),
+                    "case {case} cluster {k}: {sides:?}"
+                );
+                back += 1;
+            } else if one_winding {
+                assert!(
+                    sides.iter().all(|&s| s > 0.0),
+                    "case {case} cluster {k}: {sides:?}"
+                );
+                front += 1;
+            } else {
+                mixed += 1;
+            }
+            // mixed windings: some face is seen from each side
+            if !one_winding {
+                assert!(sides.iter().any(|&s| s < 0.0) && sides.iter().any(|&s| s > 0.0));
+            }
+        }
+    }
+    assert!(
+        back > 100 && front > 100 && mixed > 20,
+        "{back} back, {front} front, {mixed} mixed"
+    );
+}
+
 /// The seed scans (armadillo, bunny, teapot; their files' face order is not coherent in
 /// space) seen from a 24-view orbit and from eyes on and near their surfaces: the check
 /// by clusters is the per-primitive check.
