@@ -141,7 +141,7 @@ pub unsafe extern "C" fn lc_render(width: u32, height: u32, camera: *const f64) 
         let spec = spec.map(|sp| CameraSpec {
             fov_deg: sp
                 .fov_deg
-                .or_else(|| s.loaded.as_ref()?.scene.camera.fov_deg),
+                .or_else(|| s.loaded.as_ref()?.scene().camera.fov_deg),
             ..sp
         });
         match s.render(width, height, spec) {

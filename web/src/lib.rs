@@ -2,8 +2,9 @@
 //! `extern "C"` calls, for the hand-written loader `web/www/lanecast.js` (no wasm-bindgen).
 //!
 //! One engine: this crate only converts (bytes and numbers in, pointers to frames out) and
-//! delegates to the `lanecast` library. Every render goes through [`lanecast::Views`] on the
-//! scene loaded once; nothing is re-parsed when only the camera moves.
+//! delegates to the `lanecast` library. Every render goes through the one [`lanecast::Views`]
+//! kept with the scene loaded once: nothing is re-parsed or re-bounded when only the camera
+//! moves, and each frame leaves out what the one before showed hidden.
 //!
 //! The modules: `abi` holds the `extern "C"` calls (listed there, in the order a page makes
 //! them) and the memory handoff; `state` the session that holds the scene, its last frame

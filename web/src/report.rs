@@ -35,7 +35,7 @@ impl Pick {
 
 /// A scene's summary, as JSON: its name, camera, primitive counts and warnings.
 pub fn scene_json(loaded: &Loaded) -> String {
-    let s = &loaded.scene;
+    let s = loaded.scene();
     let c = s.camera;
     let v = |v: glam::DVec3| format!("[{},{},{}]", v.x, v.y, v.z);
     let fov = c.fov_deg.map_or("null".to_string(), |f| f.to_string());

@@ -7,17 +7,35 @@ use lanecast::{Camera, CameraSpec, ColorMode, Frame, Options, Scene, Variation, 
 use std::collections::HashMap;
 use std::path::Path;
 
+// The scene and its views, in one value: `Views` borrows the scene. One `Views` serves every
+// frame of a scene, so its cluster bounds are built once and each frame leaves out what the
+// last one showed hidden (the library's `render::cull`).
+self_cell::self_cell!(
+    struct Prepared {
+        owner: Scene,
+        #[covariant]
+        dependent: Views,
+    }
+);
+
 /// A scene ready for views, with what picking needs beside it.
-#[derive(Debug)]
 pub struct Loaded {
-    /// The parsed scene.
-    pub scene: Scene,
+    /// The parsed scene and the views rendered from it.
+    prepared: Prepared,
     /// For each scene line holding a `mesh` (0 for a bare mesh), the id of its first face.
     mesh_first: HashMap<usize, usize>,
 }
 
+impl std::fmt::Debug for Loaded {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Loaded")
+            .field("scene", &self.scene().source)
+            .finish()
+    }
+}
+
 impl Loaded {
-    fn new(scene: Scene) -> Loaded {
+    fn new(scene: Scene) -> Result<Loaded, String> {
         let mesh_lines: Vec<usize> = scene.shapes.meshes().map(|(_, l)| l).collect();
         let mut mesh_first = HashMap::new();
         if !mesh_lines.is_empty() {
@@ -27,12 +45,22 @@ impl Loaded {
                 }
             }
         }
-        Loaded { scene, mesh_first }
+        let prepared = Prepared::try_new(scene, |s| Views::new(s, &Options::default()))
+            .map_err(|e| e.to_string())?;
+        Ok(Loaded {
+            prepared,
+            mesh_first,
+        })
+    }
+
+    /// The parsed scene.
+    pub fn scene(&self) -> &Scene {
+        self.prepared.borrow_owner()
     }
 
     /// The mesh face index of primitive `id` when it is a mesh triangle.
     pub fn face(&self, id: usize) -> Option<usize> {
-        let line = self.scene.shapes.line(id);
+        let line = self.scene().shapes.line(id);
         self.mesh_first.get(&line).map(|first| id - first)
     }
 }
@@ -72,8 +100,9 @@ impl State {
             parse_scene_with(bytes, path, &lookup)
         }
         .map_err(|e| e.to_string())?;
+        let loaded = Loaded::new(scene)?;
         self.frame = None;
-        Ok(self.loaded.insert(Loaded::new(scene)))
+        Ok(self.loaded.insert(loaded))
     }
 
     /// Renders the loaded scene from `spec` (the scene's camera when `None`) at the given size,
@@ -85,14 +114,12 @@ impl State {
         spec: Option<CameraSpec>,
     ) -> Result<&Frame<f32>, String> {
         let loaded = self.loaded.as_ref().ok_or("no scene loaded")?;
-        let scene = &loaded.scene;
         let camera = match spec {
             Some(spec) => Camera::look_at(&spec, width, height),
-            None => Camera::for_scene(scene, width, height, None),
+            None => Camera::for_scene(loaded.scene(), width, height, None),
         }
         .map_err(|e| e.to_string())?;
-        let options = Options::default();
-        let views = Views::new(scene, &options).map_err(|e| e.to_string())?;
+        let views = loaded.prepared.borrow_dependent();
         if let Some((spare, _)) = self.frame.take() {
             views.recycle(spare);
         }
@@ -145,7 +172,7 @@ impl State {
         // the pixel's ray, as the f64 oracle forms it: f + sx r + sy u, normalised
         let dir = (camera.f + camera.sx::<f64>(x) * camera.r + camera.sy::<f64>(y) * camera.u)
             .normalize();
-        let shapes = &loaded.scene.shapes;
+        let shapes = &loaded.scene().shapes;
         let id_u = id as usize;
         let kind = match shapes.get(id_u) {
             Shape::Sphere { .. } => "sphere",
@@ -219,6 +246,37 @@ mod tests {
         assert!(s.pick(41, 0).is_none());
     }
 
+    /// Frames of an orbit about the bunny, at changing sizes, through the one `Views` the
+    /// loaded scene keeps (each leaving out what the last showed hidden): each is the frame
+    /// of a renderer of its own, ids and depths.
+    #[test]
+    fn every_frame_of_an_orbit_renders_as_a_renderer_of_its_own() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+        let obj = std::fs::read(root.join("scenes/meshes/bunny.obj")).unwrap();
+        let mut s = State::default();
+        s.load("bunny.obj", &obj).unwrap();
+        let first = s.loaded.as_ref().unwrap().scene().camera;
+        for k in 0..8u32 {
+            let a = f64::from(k) * 0.2;
+            let offset = first.eye - first.look;
+            let spec = CameraSpec {
+                eye: first.look + glam::DQuat::from_rotation_y(a) * offset,
+                ..first
+            };
+            let (w, h) = (96 + 8 * k, 64 + 4 * k);
+            let got = s.render(w, h, Some(spec)).unwrap().clone();
+            let scene = s.loaded.as_ref().unwrap().scene();
+            let camera = Camera::look_at(&spec, w, h).unwrap();
+            let want = lanecast::Renderer::new(scene, &camera, &Options::default())
+                .unwrap()
+                .render();
+            assert_eq!(got.ids, want.ids, "frame {k}");
+            let bits = |d: &[f32]| d.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&got.depth), bits(&want.depth), "frame {k}");
+            assert!(got.ids.iter().any(|&i| i >= 0), "frame {k} shows the bunny");
+        }
+    }
+
     #[test]
     fn a_bad_file_keeps_the_previous_scene() {
         let mut s = State::default();
@@ -235,7 +293,7 @@ mod tests {
         let e = s.load("a.sc", TEXT.as_bytes()).unwrap_err();
         assert!(e.starts_with("a.sc:3:") && e.contains("m.obj"), "{e}");
         assert_eq!(s.render(8, 8, None).unwrap().ids[27], 0);
-        assert!(s.loaded.as_ref().unwrap().scene.source.ends_with("a.sc"));
+        assert!(s.loaded.as_ref().unwrap().scene().source.ends_with("a.sc"));
     }
 
     #[test]
