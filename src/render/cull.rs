@@ -44,8 +44,8 @@
 //! never a wrong pixel. Views whose options take no tiles (other kernels, methods, accelerations) render every primitive
 //! (through `Views`, not this module). Tests: `tests/views_cull.rs` holds every view of slow
 //! orbits, random jumps and dollies on the seed scans and on subdivided spheres, with `auto`
-//! and `f32`, to a renderer of its own, ids, depths and re-decided pixels; `accel::clusters`
-//! holds the reach to the kernels.
+//! and `f32`, and a scene built to take the third render, to a renderer of its own, ids,
+//! depths and re-decided pixels; `accel::clusters` holds the reach to the kernels.
 
 use super::{Frame, Options, Renderer};
 use crate::accel::clusters::{ClusterScreen, Reach, Slab};
