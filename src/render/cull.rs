@@ -1,8 +1,8 @@
 //! Many views leave out what they cannot see: whole clusters of 64 triangles
 //! (`scene::range_clusters`) that no ray of the view reaches (off screen, behind the eye), and
 //! clusters that face away from the eye or that the last view did not show, once the view's
-//! own frame proves them hidden. A view's ids, depths and re-decided pixels stay those of a render of
-//! every primitive (a one-view run with the same camera), bit for bit.
+//! own frame proves them hidden. A view's ids, depths and re-decided pixels stay those of a
+//! render of every primitive (a one-view run with the same camera), bit for bit.
 //!
 //! Per view (`Views::render_marking`):
 //!
@@ -41,11 +41,13 @@
 //!
 //! Facing away and what the last view showed are guesses, and the check makes any guess safe:
 //! a bad guess (an open surface's back, a mesh wound inconsistently) costs the second render,
-//! never a wrong pixel. Views whose options take no tiles (other kernels, methods, accelerations) render every primitive
-//! (through `Views`, not this module). Tests: `tests/views_cull.rs` holds every view of slow
-//! orbits, random jumps and dollies on the seed scans and on subdivided spheres, with `auto`
-//! and `f32`, and a scene built to take the third render, to a renderer of its own, ids,
-//! depths and re-decided pixels; `accel::clusters` holds the reach to the kernels.
+//! never a wrong pixel. Views whose options take no tiles (other kernels, methods,
+//! accelerations) render every primitive (through `Views`, not this module).
+//!
+//! Tests: `tests/views_cull.rs` holds every view of slow orbits, random jumps and dollies on
+//! the seed scans and on subdivided spheres, with `auto` and `f32`, and of a scene built to
+//! take the third render, to a renderer of its own: ids, depths and re-decided pixels.
+//! `accel::clusters` holds the reach to the kernels.
 
 use super::{Frame, Options, Renderer};
 use crate::accel::clusters::{ClusterScreen, Reach, Slab};

@@ -122,10 +122,9 @@ impl<'s> Views<'s> {
 
     /// [`Views::render`] without the range check (call [`Views::check`] first), also giving
     /// the pixels re-decided in f64 and what the view took. With the tiles and the packet
-    /// kernel's default method, the view leaves out the clusters of
-    /// triangles it proves it cannot see (`render::cull`); the ids and depths are a render of
-    /// every primitive's, bit for bit. Views render one at a time: each reads what the one
-    /// before showed.
+    /// kernel's default method, the view leaves out the clusters of triangles it proves it
+    /// cannot see (`render::cull`); the ids and depths are a render of every primitive's, bit
+    /// for bit. Views render one at a time: each reads what the one before showed.
     pub fn render_marking(&self, camera: &Camera) -> Result<Rendered> {
         let mut guard = self.cull.lock().unwrap_or_else(|e| e.into_inner());
         let state = &mut *guard;

@@ -133,12 +133,8 @@ fn a_cluster_faces_away_when_every_face_is_seen_from_behind() {
                 f.swap(1, 2);
             }
         }
-        let mut scene = crate::parse_scene(
-            "camera eye 0 0 0 look 0 0 -1 up 0 1 0
-",
-            Path::new("b.sc"),
-        )
-        .unwrap();
+        let text = "camera eye 0 0 0 look 0 0 -1 up 0 1 0\n";
+        let mut scene = crate::parse_scene(text, Path::new("b.sc")).unwrap();
         scene.shapes = Shapes::new();
         scene.shapes.push_mesh(mesh, 1);
         let clusters = RangeClusters::new(&scene);
