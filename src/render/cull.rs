@@ -10,9 +10,10 @@
 //!    accept one of its faces, and a distance `near` below every distance it can return there.
 //!    A cluster on no pixel is left out. A cluster with a tightly bounded reach
 //!    ([`TRIAL_G`]) that faces away from the eye (every face seen from behind its winding, as
-//!    a closed surface's far side is), or that the last view showed none of from an eye near
-//!    enough ([`PARALLAX`]), is left out *on trial*, when the trials are worth it
-//!    ([`TRIALS_MIN`]). Every other cluster is *kept*; one with no bounded reach is *loose*.
+//!    a closed surface's far side is; after a view where most such clusters failed their
+//!    check, a surface wound inwards, those facing the eye: [`Facing`]), or that the last
+//!    view showed none of from an eye near enough ([`PARALLAX`]), is left out *on trial*,
+//!    when the trials are worth it ([`TRIALS_MIN`]). Every other cluster is *kept*; one with no bounded reach is *loose*.
 //! 2. The kept clusters are rendered as usual (`Renderer`, the stores and tiles of those
 //!    primitives alone): the frame `F`, and the pixels whose f32 hit `--precision auto`
 //!    re-decided.
@@ -83,6 +84,45 @@ const PARALLAX: f64 = 0.25;
 /// A cluster left out on trial: its index, pixel rectangle and `near`.
 type Trial = (u32, [u16; 4], f32);
 
+/// Which side of their faces marks clusters a view guesses hidden ([`Plan::new`]): those
+/// seen from behind (a closed surface wound outwards, as OBJ and PLY files wind them: its far
+/// side), then, where most of those fail their check (a surface wound inwards), those seen
+/// from the front, then neither ([`Facing::after`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub(crate) enum Facing {
+    #[default]
+    Away,
+    Towards,
+    Neither,
+}
+
+impl Facing {
+    /// Whether a cluster seen from the side `front` (`Gap::front`) is guessed hidden.
+    fn guesses(self, front: Option<bool>) -> bool {
+        match self {
+            Facing::Away => front == Some(false),
+            Facing::Towards => front == Some(true),
+            Facing::Neither => false,
+        }
+    }
+
+    /// The guess for the next view, after `failed` of the `tried` clusters this one left out
+    /// on trial for their side alone failed their check: the next guess once more than half
+    /// of at least [`FACING_MIN`] failed.
+    pub(crate) fn after(self, (tried, failed): (usize, usize)) -> Facing {
+        if tried < FACING_MIN || 2 * failed <= tried {
+            return self;
+        }
+        match self {
+            Facing::Away => Facing::Towards,
+            _ => Facing::Neither,
+        }
+    }
+}
+
+/// The fewest clusters on trial for their side alone from which [`Facing::after`] judges.
+const FACING_MIN: usize = 16;
+
 /// Which clusters one view leaves out.
 pub(crate) struct Plan {
     /// The ids of every cluster left out (on no pixel, or on trial).
@@ -96,6 +136,8 @@ pub(crate) struct Plan {
     kept: Vec<(u32, [u16; 4])>,
     /// The clusters rendered whose reach is not bounded.
     loose: Vec<u32>,
+    /// The clusters on trial for the side they are seen from alone (ascending).
+    by_side: Vec<u32>,
 }
 
 /// The second render of a view (module comment, step 4): the primitives it leaves out, and
@@ -108,38 +150,39 @@ pub(crate) struct Second {
 
 impl Plan {
     /// The plan for `camera`: clusters on no pixel, and, on trial, the clusters with a bounded
-    /// reach that face away from the eye or, where `last` (the ids the last view showed, and
-    /// its eye) is given, that showed none of them from near enough.
+    /// reach seen from the side `facing` guesses or, where `last` (the ids the last view
+    /// showed, and its eye) is given, that showed none of them from near enough.
     pub(crate) fn new(
         clusters: &RangeClusters,
         camera: &Camera,
-        last: Option<(&IdSet, DVec3)>,
+        (last, facing): (Option<(&IdSet, DVec3)>, Facing),
         spare: IdSet,
     ) -> Plan {
         let screen = ClusterScreen::new(camera);
         let eye = camera.eye;
-        let reach: Vec<Reach> = (0..clusters.len())
+        // each cluster's reach, and whether it is on trial for its side alone
+        let reach: Vec<(Reach, bool)> = (0..clusters.len())
             .into_par_iter()
             .map(|k| {
                 let Some(gap) = clusters.gap(k, eye) else {
-                    return Reach::Unbounded;
+                    return (Reach::Unbounded, false);
                 };
                 let reach = screen.reach(&gap);
-                // the guess: facing away, or, seen from near the last view's eye, showing none
-                // of its faces there
-                let hidden = || {
-                    gap.back
-                        || last.is_some_and(|(s, last_eye)| {
-                            last_eye.distance(eye) <= PARALLAX * gap.centre.distance(eye)
-                                && !(clusters.cluster(k).iter()).any(|&id| s.contains(id as usize))
-                        })
+                // the guesses: the side it is seen from, and, seen from near the last view's
+                // eye, showing none of its faces there
+                let unseen = || {
+                    last.is_some_and(|(s, last_eye)| {
+                        last_eye.distance(eye) <= PARALLAX * gap.centre.distance(eye)
+                            && !(clusters.cluster(k).iter()).any(|&id| s.contains(id as usize))
+                    })
                 };
+                let (side, unseen) = (facing.guesses(gap.front), unseen());
                 match reach {
                     // (a kept cluster is told from one on trial by `near`: NaN)
-                    Reach::Pixels(rect, _, g, slab) if g > TRIAL_G || !hidden() => {
-                        Reach::Pixels(rect, f32::NAN, g, slab)
+                    Reach::Pixels(rect, _, g, slab) if g > TRIAL_G || !(side || unseen) => {
+                        (Reach::Pixels(rect, f32::NAN, g, slab), false)
                     }
-                    r => r,
+                    r => (r, side && !unseen),
                 }
             })
             .collect();
@@ -150,11 +193,12 @@ impl Plan {
             slabs: Vec::new(),
             kept: Vec::new(),
             loose: Vec::new(),
+            by_side: Vec::new(),
         };
         // trials only where they may pay (module comment)
         let size = |class: fn(&Reach) -> bool| {
             (reach.iter().enumerate())
-                .filter(|(_, r)| class(r))
+                .filter(|(_, (r, _))| class(r))
                 .map(|(k, _)| clusters.cluster(k).len())
                 .sum::<usize>()
         };
@@ -163,7 +207,7 @@ impl Plan {
         let loose = size(|r| matches!(r, Reach::Unbounded));
         let trials =
             on_trial as f64 >= TRIALS_MIN * n as f64 && loose as f64 <= LOOSE_MAX * n as f64;
-        for (k, r) in reach.into_iter().enumerate() {
+        for (k, (r, by_side)) in reach.into_iter().enumerate() {
             let k32 = k as u32;
             let r = match r {
                 Reach::Pixels(rect, _, g, slab) if !trials => {
@@ -177,6 +221,9 @@ impl Plan {
                 Reach::Pixels(rect, near, _, slab) => {
                     plan.trials.push((k32, rect, near));
                     plan.slabs.push(slab);
+                    if by_side {
+                        plan.by_side.push(k32);
+                    }
                 }
                 Reach::Nowhere => plan.nowhere.push(k32),
             }
@@ -187,6 +234,16 @@ impl Plan {
             }
         }
         plan
+    }
+
+    /// Of the clusters on trial for their side alone, how many there were and how many of
+    /// them are among `failed` (as [`Plan::failed`] gives them, ascending): what
+    /// [`Facing::after`] judges by.
+    pub(crate) fn side_failures(&self, failed: &[Trial]) -> (usize, usize) {
+        let failed_by_side = (self.by_side.iter())
+            .filter(|&&k| failed.binary_search_by_key(&k, |t| t.0).is_ok())
+            .count();
+        (self.by_side.len(), failed_by_side)
     }
 
     /// Whether anything is left out on trial.
@@ -502,5 +559,27 @@ impl Clock {
         return self.start.elapsed().as_secs_f64();
         #[cfg(all(target_arch = "wasm32", target_os = "unknown"))]
         0.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The side guessed: seen from behind, then, once more than half of at least
+    /// `FACING_MIN` such clusters fail, from the front, then neither; never for a cluster of
+    /// mixed windings.
+    #[test]
+    fn the_side_guessed_turns_when_most_of_its_clusters_fail() {
+        use Facing::*;
+        assert!(Away.guesses(Some(false)) && !Away.guesses(Some(true)) && !Away.guesses(None));
+        assert!(Towards.guesses(Some(true)) && !Towards.guesses(Some(false)));
+        assert!(!Neither.guesses(Some(true)) && !Neither.guesses(Some(false)));
+        assert_eq!(Away.after((FACING_MIN, FACING_MIN / 2)), Away);
+        assert_eq!(Away.after((FACING_MIN, FACING_MIN / 2 + 1)), Towards);
+        assert_eq!(Away.after((FACING_MIN - 1, FACING_MIN - 1)), Away);
+        assert_eq!(Towards.after((100, 51)), Neither);
+        assert_eq!(Towards.after((100, 50)), Towards);
+        assert_eq!(Neither.after((100, 100)), Neither);
     }
 }

@@ -35,8 +35,9 @@ pub struct Views<'s> {
     /// The buffers the next view fills: the last frame handed back ([`Views::recycle`]) and
     /// those of the last renderer handed back ([`Views::give_back`]).
     spare: Mutex<Spare>,
-    /// What the culling keeps between views: the ids the last view showed, the frame of the
-    /// last second render, and spare id sets.
+    /// What the culling keeps between views: the ids the last view showed and its eye, the
+    /// side of faces it guesses hidden (`cull::Facing`), the frame of the last second render,
+    /// and spare id sets.
     cull: Mutex<CullState>,
 }
 
@@ -44,6 +45,7 @@ pub struct Views<'s> {
 struct CullState {
     last: Option<IdSet>,
     last_eye: glam::DVec3,
+    facing: cull::Facing,
     touch: Option<Frame<f32>>,
     sets: [IdSet; 2],
 }
@@ -134,7 +136,7 @@ impl<'s> Views<'s> {
             let clusters = self.range.get_or_init(|| RangeClusters::new(self.scene));
             let set = std::mem::take(&mut state.sets[0]);
             let last = state.last.as_ref().map(|s| (s, state.last_eye));
-            Plan::new(clusters, camera, last, set)
+            Plan::new(clusters, camera, (last, state.facing), set)
         });
         let spare = self.take_spare();
         let left_out = plan.as_ref().map(|p| &p.left_out);
@@ -182,6 +184,7 @@ impl<'s> Views<'s> {
         } else {
             Vec::new()
         };
+        state.facing = state.facing.after(plan.side_failures(&failed));
         done.setup_s += clock.secs();
         if !failed.is_empty() {
             let f_redone = std::mem::take(&mut done.redecided);

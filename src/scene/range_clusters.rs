@@ -105,11 +105,12 @@ pub(crate) struct Gap {
     /// bound on its distance from every vertex.
     pub(crate) h: f64,
     pub(crate) reach: f64,
-    /// Whether the eye sees every face from behind (the side against its winding's normal):
-    /// with the eye off every face's plane and one winding throughout, the cluster faces
-    /// away. For a closed surface wound one way, such a cluster lies behind the surface's
-    /// front (a guess `render::cull` checks, never trusts).
-    pub(crate) back: bool,
+    /// With the eye off every face's plane and one winding throughout: `Some(true)` when the
+    /// eye sees every face from its front (the side its winding's normal points to),
+    /// `Some(false)` when it sees every face from behind; `None` when the windings differ.
+    /// On a closed surface wound outwards the clusters seen from behind lie behind its front
+    /// (a guess `render::cull` checks, never trusts).
+    pub(crate) front: Option<bool>,
 }
 
 /// The clusters of one scene: its primitives' ids in space order, [`CLUSTER`] at a time, and
@@ -227,7 +228,7 @@ impl RangeClusters {
             delta: b.delta,
             h,
             reach,
-            back: b.winding * (eye - b.centre).dot(b.axis) < 0.0,
+            front: (b.winding != 0.0).then(|| b.winding * (eye - b.centre).dot(b.axis) > 0.0),
         })
     }
 
