@@ -13,7 +13,8 @@
 //!    a closed surface's far side is; after a view where most such clusters failed their
 //!    check, a surface wound inwards, those facing the eye: [`Facing`]), or that the last
 //!    view showed none of from an eye near enough ([`PARALLAX`]), is left out *on trial*,
-//!    when the trials are worth it ([`TRIALS_MIN`]). Every other cluster is *kept*; one with no bounded reach is *loose*.
+//!    when the trials are worth it ([`TRIALS_MIN`]). Every other cluster is *kept*; one with
+//!    no bounded reach is *loose*.
 //! 2. The kept clusters are rendered as usual (`Renderer`, the stores and tiles of those
 //!    primitives alone): the frame `F`, and the pixels whose f32 hit `--precision auto`
 //!    re-decided.
@@ -85,9 +86,9 @@ const PARALLAX: f64 = 0.25;
 type Trial = (u32, [u16; 4], f32);
 
 /// Which side of their faces marks clusters a view guesses hidden ([`Plan::new`]): those
-/// seen from behind (a closed surface wound outwards, as OBJ and PLY files wind them: its far
-/// side), then, where most of those fail their check (a surface wound inwards), those seen
-/// from the front, then neither ([`Facing::after`]).
+/// seen from behind (the far side of a closed surface wound outwards, as meshes usually are),
+/// then, where most of those fail their check (a surface wound inwards), those seen from the
+/// front, then neither ([`Facing::after`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub(crate) enum Facing {
     #[default]
