@@ -108,8 +108,8 @@ impl Facing {
     }
 
     /// The guess for the next view, after `failed` of the `tried` clusters this one left out
-    /// on trial for their side alone failed their check: the next guess once more than half
-    /// of at least [`FACING_MIN`] failed.
+    /// on trial for their side failed their check: the next guess once more than half of at
+    /// least [`FACING_MIN`] failed.
     pub(crate) fn after(self, (tried, failed): (usize, usize)) -> Facing {
         if tried < FACING_MIN || 2 * failed <= tried {
             return self;
@@ -121,7 +121,7 @@ impl Facing {
     }
 }
 
-/// The fewest clusters on trial for their side alone from which [`Facing::after`] judges.
+/// The fewest clusters on trial for their side from which [`Facing::after`] judges.
 const FACING_MIN: usize = 16;
 
 /// Which clusters one view leaves out.
@@ -137,7 +137,8 @@ pub(crate) struct Plan {
     kept: Vec<(u32, [u16; 4])>,
     /// The clusters rendered whose reach is not bounded.
     loose: Vec<u32>,
-    /// The clusters on trial for the side they are seen from alone (ascending).
+    /// The clusters on trial for the side they are seen from, whatever the last view showed
+    /// (ascending).
     by_side: Vec<u32>,
 }
 
@@ -161,7 +162,7 @@ impl Plan {
     ) -> Plan {
         let screen = ClusterScreen::new(camera);
         let eye = camera.eye;
-        // each cluster's reach, and whether it is on trial for its side alone
+        // each cluster's reach, and whether its side is a reason it is on trial
         let reach: Vec<(Reach, bool)> = (0..clusters.len())
             .into_par_iter()
             .map(|k| {
@@ -177,13 +178,13 @@ impl Plan {
                             && !(clusters.cluster(k).iter()).any(|&id| s.contains(id as usize))
                     })
                 };
-                let (side, unseen) = (facing.guesses(gap.front), unseen());
+                let side = facing.guesses(gap.front);
                 match reach {
                     // (a kept cluster is told from one on trial by `near`: NaN)
-                    Reach::Pixels(rect, _, g, slab) if g > TRIAL_G || !(side || unseen) => {
+                    Reach::Pixels(rect, _, g, slab) if g > TRIAL_G || !(side || unseen()) => {
                         (Reach::Pixels(rect, f32::NAN, g, slab), false)
                     }
-                    r => (r, side && !unseen),
+                    r => (r, side),
                 }
             })
             .collect();
@@ -237,9 +238,10 @@ impl Plan {
         plan
     }
 
-    /// Of the clusters on trial for their side alone, how many there were and how many of
-    /// them are among `failed` (as [`Plan::failed`] gives them, ascending): what
-    /// [`Facing::after`] judges by.
+    /// Of the clusters on trial for their side, how many there were and how many of them are
+    /// among `failed` (as [`Plan::failed`] gives them, ascending): what [`Facing::after`]
+    /// judges by. (All of them, not only those the last view's guess left out too: those alone
+    /// are few on an orbit, and lie at the silhouette, where most fail whatever the winding.)
     pub(crate) fn side_failures(&self, failed: &[Trial]) -> (usize, usize) {
         let failed_by_side = (self.by_side.iter())
             .filter(|&&k| failed.binary_search_by_key(&k, |t| t.0).is_ok())
