@@ -132,6 +132,9 @@ impl<'s> Views<'s> {
         let state = &mut *guard;
         let culls = cull::applies(&self.options, self.scene);
         // each view shows what the next may leave out; the first guesses from the faces alone
+        // (the plan counts in the view's setup, as do the clusters' bounds when this view
+        // builds them)
+        let clock = cull::Clock::start();
         let plan = culls.then(|| {
             let clusters = self.range.get_or_init(|| RangeClusters::new(self.scene));
             let set = std::mem::take(&mut state.sets[0]);
@@ -140,12 +143,13 @@ impl<'s> Views<'s> {
         });
         let spare = self.take_spare();
         let left_out = plan.as_ref().map(|p| &p.left_out);
+        let planned = clock.secs();
         let (renderer, frame, redone, [setup, render]) =
             cull::render_without(self.scene, camera, &self.options, spare, left_out)?;
         let mut done = Rendered {
             frame,
             redecided: redone,
-            setup_s: setup,
+            setup_s: planned + setup,
             render_s: render,
             accel: renderer.accel(),
             parallel: renderer.is_parallel(),
@@ -158,10 +162,12 @@ impl<'s> Views<'s> {
             done = self.settle(state, camera, plan, done)?;
         }
         if culls {
+            let clock = cull::Clock::start();
             let spare = state.last.take().unwrap_or_default();
             let n = self.scene.shapes.len();
             state.last = Some(cull::shown(&done.frame, n, spare));
             state.last_eye = camera.eye;
+            done.setup_s += clock.secs();
         }
         Ok(done)
     }
