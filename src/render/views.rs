@@ -43,8 +43,8 @@ pub struct Views<'s> {
 
 #[derive(Default)]
 struct CullState {
-    last: Option<IdSet>,
-    last_eye: glam::DVec3,
+    /// The ids the last view showed, and its eye.
+    last: Option<(IdSet, glam::DVec3)>,
     facing: cull::Facing,
     touch: Option<Frame<f32>>,
     sets: [IdSet; 2],
@@ -138,7 +138,7 @@ impl<'s> Views<'s> {
         let plan = culls.then(|| {
             let clusters = self.range.get_or_init(|| RangeClusters::new(self.scene));
             let set = std::mem::take(&mut state.sets[0]);
-            let last = state.last.as_ref().map(|s| (s, state.last_eye));
+            let last = state.last.as_ref().map(|(s, eye)| (s, *eye));
             Plan::new(clusters, camera, (last, state.facing), set)
         });
         let spare = self.take_spare();
@@ -163,10 +163,9 @@ impl<'s> Views<'s> {
         }
         if culls {
             let clock = cull::Clock::start();
-            let spare = state.last.take().unwrap_or_default();
+            let spare = state.last.take().map(|(s, _)| s).unwrap_or_default();
             let n = self.scene.shapes.len();
-            state.last = Some(cull::shown(&done.frame, n, spare));
-            state.last_eye = camera.eye;
+            state.last = Some((cull::shown(&done.frame, n, spare), camera.eye));
             done.setup_s += clock.secs();
         }
         Ok(done)
