@@ -7,8 +7,10 @@
 #
 # Needs: LANECAST (default target/release/lanecast), EMBREE (default target/embree/embree_cast,
 # built by scripts/vs_embree.py) and ORBIT (default ../shared/anchors/orbit_views.py); python3.
-# On the 16-core device machine, with binaries carried as ../shared/anchors/embree/device.md
-# says: LANECAST=.dev/bin/lanecast EMBREE=.dev/bin/embree_cast ORBIT=.dev/orbit_views.py
+# SCAN (optional) names an armadillo_3.obj already written by scripts/subdivide.py, to skip
+# writing one. On the 16-core device machine, with binaries carried as
+# ../shared/anchors/embree/device.md says:
+# LANECAST=.dev/bin/lanecast EMBREE=.dev/bin/embree_cast ORBIT=.dev/orbit_views.py
 set -u
 cd "$(dirname "$0")/.."
 LANECAST=${LANECAST:-target/release/lanecast}
@@ -25,7 +27,11 @@ mkdir -p "$OUT"
 R=$OUT/results.txt
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 echo "# $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2) / $(nproc) cpus" > "$R"
-python3 scripts/subdivide.py scenes/meshes/armadillo.obj "$work/armadillo_3.obj" 3 >> "$R" 2>&1
+if [ -n "${SCAN:-}" ]; then
+  ln -s "$(realpath "$SCAN")" "$work/armadillo_3.obj"
+else
+  python3 scripts/subdivide.py scenes/meshes/armadillo.obj "$work/armadillo_3.obj" 3 >> "$R" 2>&1
+fi
 printf 'camera eye 60 60 -330 look 0 22 0 up 0 1 0 fov 40\nmesh armadillo_3.obj\n' > "$work/armadillo_3.sc"
 python3 "$ORBIT" "$work/armadillo_3.sc" "${VIEWS:-20}" > "$work/views.txt"
 mkdir -p "$work/frames"
