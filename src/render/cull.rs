@@ -53,14 +53,18 @@
 
 use super::{Frame, Options, Renderer};
 use crate::accel::clusters::{ClusterScreen, Reach, Slab};
-use crate::accel::tiles::{TILE_H, TILE_W};
 use crate::camera::Camera;
-use crate::kernel::closer;
 use crate::par::prelude::*;
 use crate::scene::Scene;
 use crate::scene::range_clusters::RangeClusters;
 use crate::soa::IdSet;
 use glam::DVec3;
+
+mod check;
+mod merge;
+
+use check::{Check, TileDepths};
+pub(crate) use merge::{Pixel, merge, merged_redone};
 
 /// Only clusters whose box is widened by at most this fraction of their distance
 /// (`accel::clusters`: `g`) are left out on trial. The others, the silhouette's (an eye
@@ -124,12 +128,23 @@ impl Facing {
 /// The fewest clusters on trial for their side from which [`Facing::after`] judges.
 const FACING_MIN: usize = 16;
 
+/// What one view does with one cluster (module comment, step 1).
+enum Verdict {
+    /// On no pixel: left out for sure.
+    Nowhere,
+    /// Rendered: its reach is not bounded.
+    Loose,
+    /// Rendered: its faces can be hit on the pixels of this rectangle alone.
+    Kept([u16; 4]),
+    /// Left out on trial, with the box its faces' accepted rays meet, and whether the side it
+    /// is seen from is a reason.
+    Trial(Trial, Slab, bool),
+}
+
 /// Which clusters one view leaves out.
 pub(crate) struct Plan {
     /// The ids of every cluster left out (on no pixel, or on trial).
     pub(crate) left_out: IdSet,
-    /// The clusters on no pixel (left out for sure).
-    nowhere: Vec<u32>,
     /// The clusters left out on trial, and the boxes their faces' accepted rays meet.
     trials: Vec<Trial>,
     slabs: Vec<Slab>,
@@ -162,14 +177,17 @@ impl Plan {
     ) -> Plan {
         let screen = ClusterScreen::new(camera);
         let eye = camera.eye;
-        // each cluster's reach, and whether its side is a reason it is on trial
-        let reach: Vec<(Reach, bool)> = (0..clusters.len())
+        let verdicts: Vec<Verdict> = (0..clusters.len())
             .into_par_iter()
             .map(|k| {
                 let Some(gap) = clusters.gap(k, eye) else {
-                    return (Reach::Unbounded, false);
+                    return Verdict::Loose;
                 };
-                let reach = screen.reach(&gap);
+                let (rect, near, g, slab) = match screen.reach(&gap) {
+                    Reach::Nowhere => return Verdict::Nowhere,
+                    Reach::Unbounded => return Verdict::Loose,
+                    Reach::Pixels(rect, near, g, slab) => (rect, near, g, slab),
+                };
                 // the guesses: the side it is seen from, and, seen from near the last view's
                 // eye, showing none of its faces there
                 let unseen = || {
@@ -179,18 +197,15 @@ impl Plan {
                     })
                 };
                 let side = facing.guesses(gap.front);
-                match reach {
-                    // (a kept cluster is told from one on trial by `near`: NaN)
-                    Reach::Pixels(rect, _, g, slab) if g > TRIAL_G || !(side || unseen()) => {
-                        (Reach::Pixels(rect, f32::NAN, g, slab), false)
-                    }
-                    r => (r, side),
+                if g <= TRIAL_G && (side || unseen()) {
+                    Verdict::Trial((k as u32, rect, near), slab, side)
+                } else {
+                    Verdict::Kept(rect)
                 }
             })
             .collect();
         let mut plan = Plan {
             left_out: IdSet::empty_in(clusters.ids_len(), spare),
-            nowhere: Vec::new(),
             trials: Vec::new(),
             slabs: Vec::new(),
             kept: Vec::new(),
@@ -198,38 +213,43 @@ impl Plan {
             by_side: Vec::new(),
         };
         // trials only where they may pay (module comment)
-        let size = |class: fn(&Reach) -> bool| {
-            (reach.iter().enumerate())
-                .filter(|(_, (r, _))| class(r))
+        let size = |class: fn(&Verdict) -> bool| {
+            (verdicts.iter().enumerate())
+                .filter(|(_, v)| class(v))
                 .map(|(k, _)| clusters.cluster(k).len())
                 .sum::<usize>()
         };
         let n = clusters.ids_len();
-        let on_trial = size(|r| matches!(r, Reach::Pixels(_, near, ..) if !near.is_nan()));
-        let loose = size(|r| matches!(r, Reach::Unbounded));
+        let on_trial = size(|v| matches!(v, Verdict::Trial(..)));
+        let loose = size(|v| matches!(v, Verdict::Loose));
         let trials =
             on_trial as f64 >= TRIALS_MIN * n as f64 && loose as f64 <= LOOSE_MAX * n as f64;
-        for (k, (r, by_side)) in reach.into_iter().enumerate() {
+        for (k, verdict) in verdicts.into_iter().enumerate() {
             let k32 = k as u32;
-            let r = match r {
-                Reach::Pixels(rect, _, g, slab) if !trials => {
-                    Reach::Pixels(rect, f32::NAN, g, slab)
+            let leave_out = match verdict {
+                Verdict::Nowhere => true,
+                Verdict::Loose => {
+                    plan.loose.push(k32);
+                    false
                 }
-                r => r,
-            };
-            match r {
-                Reach::Unbounded => plan.loose.push(k32),
-                Reach::Pixels(rect, near, ..) if near.is_nan() => plan.kept.push((k32, rect)),
-                Reach::Pixels(rect, near, _, slab) => {
-                    plan.trials.push((k32, rect, near));
+                Verdict::Kept(rect) | Verdict::Trial((_, rect, _), ..) if !trials => {
+                    plan.kept.push((k32, rect));
+                    false
+                }
+                Verdict::Kept(rect) => {
+                    plan.kept.push((k32, rect));
+                    false
+                }
+                Verdict::Trial(trial, slab, by_side) => {
+                    plan.trials.push(trial);
                     plan.slabs.push(slab);
                     if by_side {
                         plan.by_side.push(k32);
                     }
+                    true
                 }
-                Reach::Nowhere => plan.nowhere.push(k32),
-            }
-            if matches!(r, Reach::Nowhere) || matches!(r, Reach::Pixels(_, n, ..) if !n.is_nan()) {
+            };
+            if leave_out {
                 for &id in clusters.cluster(k) {
                     plan.left_out.insert(id as usize);
                 }
@@ -340,89 +360,6 @@ fn inside(p: usize, width: usize, [x0, y0, x1, y1]: [u16; 4]) -> bool {
     (x0 as usize..=x1 as usize).contains(&x) && (y0 as usize..=y1 as usize).contains(&y)
 }
 
-/// Merges `g`, the second render `second` of the clusters `failed` (re-decided pixels
-/// `g_redone`), into `f` (re-decided pixels `f_redone`) (module comment, step 4). Where `G`
-/// re-decided a pixel that a failed cluster may reach nearer than `F`'s hit, neither frame
-/// holds the pixel's value: those pixels come back as the error, and `f` is left as it was.
-pub(crate) fn merge(
-    f: &mut Frame<f32>,
-    f_redone: &[usize],
-    (g, g_redone): (&Frame<f32>, &[usize]),
-    second: &Second,
-    failed: &[Trial],
-    known: &[Pixel],
-) -> Result<(), Vec<usize>> {
-    let width = f.width as usize;
-    // the pixels decided one by one, and their values
-    let mut fixed: Vec<Pixel> = Vec::new();
-    let mut unsettled = Vec::new();
-    let at = |fr: &Frame<f32>, p: usize| (fr.ids[p], fr.depth[p]);
-    for &p in &second.complete {
-        fixed.push((p, at(g, p)));
-    }
-    let is_known = |p: usize| known.iter().any(|&(q, _)| q == p);
-    for &p in g_redone {
-        if second.complete.contains(&p) || is_known(p) {
-            continue;
-        }
-        // where no failed cluster reaches, or `F`'s hit is nearer than any of theirs, `F`
-        let nearest = (failed.iter())
-            .filter(|&&(_, rect, _)| inside(p, width, rect))
-            .map(|&(.., near)| near)
-            .fold(f32::INFINITY, f32::min);
-        if nearest == f32::INFINITY || !f_redone.contains(&p) && f.depth[p] < nearest {
-            fixed.push((p, at(f, p)));
-        } else {
-            unsettled.push(p);
-        }
-    }
-    if !unsettled.is_empty() {
-        return Err(unsettled);
-    }
-    for &p in f_redone {
-        if !second.complete.contains(&p) {
-            fixed.push((p, at(f, p)));
-        }
-    }
-    (f.ids
-        .par_chunks_mut(width)
-        .zip(f.depth.par_chunks_mut(width)))
-    .zip(g.ids.par_chunks(width).zip(g.depth.par_chunks(width)))
-    .for_each(|((fi, fd), (gi, gd))| {
-        for x in 0..fi.len() {
-            if closer(gd[x], gi[x], fd[x], fi[x]) {
-                (fi[x], fd[x]) = (gi[x], gd[x]);
-            }
-        }
-    });
-    for (p, (id, t)) in fixed.into_iter().chain(known.iter().copied()) {
-        (f.ids[p], f.depth[p]) = (id, t);
-    }
-    Ok(())
-}
-
-/// A pixel (row-major index) and its id and depth.
-pub(crate) type Pixel = (usize, (i32, f32));
-
-/// The re-decided pixels of a merged frame (ascending): `F`'s where `F` gave the pixel,
-/// `G`'s where the second render gave it alone, `H`'s where a third gave it (`known`).
-pub(crate) fn merged_redone(
-    f_redone: &[usize],
-    [g_redone, h_redone]: [&[usize]; 2],
-    second: &Second,
-    known: &[Pixel],
-) -> Vec<usize> {
-    let is_known = |p: &usize| known.iter().any(|k| k.0 == *p);
-    let by_g = |p: &usize| second.complete.contains(p) && !is_known(p);
-    let mut all: Vec<usize> = (f_redone.iter().copied())
-        .filter(|p| !second.complete.contains(p) && !is_known(p))
-        .chain(g_redone.iter().copied().filter(by_g))
-        .chain(h_redone.iter().copied().filter(is_known))
-        .collect();
-    all.sort_unstable();
-    all
-}
-
 /// The ids a frame shows, in `spare`'s buffer: a view's guess at the next one's.
 pub(crate) fn shown(frame: &Frame<f32>, primitives: usize, spare: IdSet) -> IdSet {
     let mut set = IdSet::empty_in(primitives, spare);
@@ -442,80 +379,6 @@ pub(crate) fn applies(options: &Options, scene: &Scene) -> bool {
     options.kernel == Kernel::Packet
         && matches!(options.method, Method::Default | Method::Auto)
         && options.accel.resolve(scene.shapes.len()) == Accel::Tiles
-}
-
-/// Per 8x8 tile of a frame, the farthest depth of its pixels (+inf where one is background),
-/// NaN where one was re-decided (such a tile proves nothing about its pixels).
-struct TileDepths {
-    across: usize,
-    far: Vec<f32>,
-}
-
-impl TileDepths {
-    fn new(frame: &Frame<f32>, redone: &[usize]) -> TileDepths {
-        let (w, h) = (frame.width as usize, frame.height as usize);
-        let across = w.div_ceil(TILE_W);
-        let mut far = vec![0f32; across * h.div_ceil(TILE_H)];
-        (far.par_chunks_mut(across).enumerate()).for_each(|(ty, row)| {
-            for y in ty * TILE_H..((ty + 1) * TILE_H).min(h) {
-                let depth = &frame.depth[y * w..(y + 1) * w];
-                for (tx, far) in row.iter_mut().enumerate() {
-                    for &t in &depth[tx * TILE_W..((tx + 1) * TILE_W).min(w)] {
-                        // (background is +inf; a NaN, never written, counts as background)
-                        if t.is_nan() || t > *far {
-                            *far = if t.is_nan() { f32::INFINITY } else { t };
-                        }
-                    }
-                }
-            }
-        });
-        // a tile with a re-decided pixel proves nothing: NaN, below no `near`
-        for &p in redone {
-            far[(p / w) / TILE_H * across + (p % w) / TILE_W] = f32::NAN;
-        }
-        TileDepths { across, far }
-    }
-
-    /// Whether every pixel of `rect` whose ray meets `slab` holds a hit nearer than `near`
-    /// that was not re-decided: tile by tile, pixel by pixel only in the tiles whose farthest
-    /// depth does not settle it.
-    fn hides(&self, c: &Check, [x0, y0, x1, y1]: [u16; 4], near: f32, slab: &Slab) -> bool {
-        let w = c.frame.width as usize;
-        let (x0, y0, x1, y1) = (x0 as usize, y0 as usize, x1 as usize, y1 as usize);
-        let r = c.rays;
-        let [f, right, up] = [r.f, r.r, r.u].map(DVec3::from_array);
-        for ty in y0 / TILE_H..=y1 / TILE_H {
-            for tx in x0 / TILE_W..=x1 / TILE_W {
-                let far = self.far[ty * self.across + tx];
-                if far < near {
-                    continue;
-                }
-                let tainted = far.is_nan();
-                for y in (ty * TILE_H).max(y0)..=((ty + 1) * TILE_H - 1).min(y1) {
-                    for x in (tx * TILE_W).max(x0)..=((tx + 1) * TILE_W - 1).min(x1) {
-                        let p = y * w + x;
-                        let covered = c.frame.depth[p] < near
-                            && !(tainted && c.redone.binary_search(&p).is_ok());
-                        if covered {
-                            continue;
-                        }
-                        if slab.meets(f + right * r.sx[x] + up * r.sy[y]) {
-                            return false;
-                        }
-                    }
-                }
-            }
-        }
-        true
-    }
-}
-
-/// What the check of a cluster on trial reads: the frame, its re-decided pixels (ascending),
-/// and the view's f64 rays.
-struct Check<'a> {
-    frame: &'a Frame<f32>,
-    redone: &'a [usize],
-    rays: &'a crate::camera::RayTables<f64>,
 }
 
 /// A render's renderer (to hand its buffers back), its frame and re-decided pixels, and its
