@@ -45,20 +45,31 @@ pub struct Stats {
 /// The times of a many-view run's views, in seconds.
 #[derive(Debug, Clone, Default)]
 pub struct ViewTimes {
-    /// Each rendered view's (setup, render, output) times, in order: setup prepares the scene
-    /// for its camera, render traces its rays, output shades, encodes, writes and commits.
-    pub each: Vec<[f64; 3]>,
-    /// Each rendered view's primitives left out and renders taken (`Rendered::left_out`,
-    /// `Rendered::renders`), parallel to `each`.
-    pub culled: Vec<[usize; 2]>,
+    /// Each rendered view, in order.
+    pub each: Vec<ViewTime>,
     /// Views left out by `--skip-existing`.
     pub skipped: usize,
+}
+
+/// One rendered view's seconds and culling.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct ViewTime {
+    /// Preparing the scene for its camera (`Rendered::setup_s`).
+    pub setup_s: f64,
+    /// Tracing its rays (`Rendered::render_s`).
+    pub render_s: f64,
+    /// Shading, encoding, writing and committing its outputs.
+    pub output_s: f64,
+    /// Primitives it left out (`Rendered::left_out`).
+    pub left_out: usize,
+    /// Renders it took (`Rendered::renders`).
+    pub renders: usize,
 }
 
 impl ViewTimes {
     /// Setup plus render of each view: the per-view cost, outputs excluded.
     pub fn costs(&self) -> Vec<f64> {
-        self.each.iter().map(|t| t[0] + t[1]).collect()
+        self.each.iter().map(|t| t.setup_s + t.render_s).collect()
     }
 
     /// The median of `costs` (NaN when no view rendered).
@@ -152,7 +163,7 @@ impl Stats {
                 costs.first().copied().unwrap_or(f64::NAN) * 1e3,
                 v.median_cost() * 1e3,
                 costs.iter().sum::<f64>() * 1e3,
-                v.each.iter().map(|t| t[2]).sum::<f64>() * 1e3,
+                v.each.iter().map(|t| t.output_s).sum::<f64>() * 1e3,
             );
         } else if self.renders.len() > 1 {
             let _ = writeln!(
@@ -222,10 +233,10 @@ impl Stats {
         });
         let mut record = record;
         if let Some(v) = &self.views {
-            let each: Vec<_> = (v.each.iter().zip(&v.culled))
-                .map(|(t, c)| {
-                    serde_json::json!({"setup_s": t[0], "render_s": t[1], "output_s": t[2],
-                        "left_out": c[0], "renders": c[1]})
+            let each: Vec<_> = (v.each.iter())
+                .map(|t| {
+                    serde_json::json!({"setup_s": t.setup_s, "render_s": t.render_s,
+                        "output_s": t.output_s, "left_out": t.left_out, "renders": t.renders})
                 })
                 .collect();
             record["views"] = serde_json::json!({

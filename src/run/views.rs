@@ -17,7 +17,7 @@ use crate::render::{Options, Views};
 use crate::scene::views::{ViewLine, load_views, orbit};
 use crate::scene::{CameraSpec, Scene, load_scene_meshes};
 use crate::shade::shade;
-use crate::stats::{Stats, ViewTimes, secs};
+use crate::stats::{Stats, ViewTime, ViewTimes, secs};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::Ordering;
@@ -232,8 +232,14 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
                 .collect();
             let mut set = OutputSet::create(&outputs, &[])?;
             let view = views.render_marking(camera)?;
-            let (frame, setup, render) = (view.frame, view.setup_s, view.render_s);
-            times.culled.push([view.left_out, view.renders]);
+            let mut time = ViewTime {
+                setup_s: view.setup_s,
+                render_s: view.render_s,
+                left_out: view.left_out,
+                renders: view.renders,
+                ..ViewTime::default()
+            };
+            let frame = view.frame;
             if view.redecides {
                 *stats.redecided.get_or_insert(0) += view.redecided.len();
             }
@@ -243,7 +249,7 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
             } else {
                 1
             };
-            stats.renders.push(render);
+            stats.renders.push(time.render_s);
             let clock = Instant::now();
             let rgb = shade(
                 &frame.ids,
@@ -260,7 +266,8 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
                 Some(format) => encode_to_stdout(format, s.view.width, s.view.height, &rgb)?,
                 None => true,
             };
-            times.each.push([setup, render, secs(clock.elapsed())]);
+            time.output_s = secs(clock.elapsed());
+            times.each.push(time);
             done.fetch_add(1, Ordering::Relaxed);
             if !sent {
                 break; // the reader closed the pipe: it wants no more views
