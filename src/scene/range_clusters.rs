@@ -74,9 +74,9 @@ struct Bound {
     /// least and greatest coordinates (widened by `1e-9 rho` for their rounding).
     lo: DVec3,
     hi: DVec3,
-    /// +1 when every face's normal by its winding (`(B - A) x (C - A)`) lies on `+axis`'s
-    /// side, -1 when every one lies on `-axis`'s, 0 when they differ.
-    winding: f64,
+    /// `Some(true)` when every face's normal by its winding (`(B - A) x (C - A)`) lies on
+    /// `+axis`'s side, `Some(false)` when every one lies on `-axis`'s, `None` when they differ.
+    winding: Option<bool>,
 }
 
 /// The orthonormal frame of a cluster's box: two directions across `axis`, then `axis`.
@@ -228,7 +228,10 @@ impl RangeClusters {
             delta: b.delta,
             h,
             reach,
-            front: (b.winding != 0.0).then(|| b.winding * (eye - b.centre).dot(b.axis) > 0.0),
+            front: b.winding.map(|plus| {
+                let d = (eye - b.centre).dot(b.axis);
+                if plus { d > 0.0 } else { -d > 0.0 }
+            }),
         })
     }
 
@@ -372,11 +375,7 @@ impl Bound {
             .sum();
         let axis = sum.normalize_or_zero();
         let side = |n: &DVec3| n.dot(axis).signum();
-        let winding = if normals.iter().all(|n| side(n) == side(&n0)) {
-            side(&n0)
-        } else {
-            0.0
-        };
+        let winding = (normals.iter().all(|n| side(n) == side(&n0))).then(|| side(&n0) > 0.0);
         let cos_min = normals
             .iter()
             .map(|n| n.dot(axis).abs())
