@@ -226,14 +226,14 @@ impl Plan {
             on_trial as f64 >= TRIALS_MIN * n as f64 && loose as f64 <= LOOSE_MAX * n as f64;
         for (k, verdict) in verdicts.into_iter().enumerate() {
             let k32 = k as u32;
+            let verdict = match verdict {
+                Verdict::Trial((_, rect, _), ..) if !trials => Verdict::Kept(rect),
+                v => v,
+            };
             let leave_out = match verdict {
                 Verdict::Nowhere => true,
                 Verdict::Loose => {
                     plan.loose.push(k32);
-                    false
-                }
-                Verdict::Kept(rect) | Verdict::Trial((_, rect, _), ..) if !trials => {
-                    plan.kept.push((k32, rect));
                     false
                 }
                 Verdict::Kept(rect) => {
