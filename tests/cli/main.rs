@@ -1,0 +1,38 @@
+//! End to end through the real binary: the original invocations and their GNU long forms,
+//! `.npy` side outputs, known pixels, rejected input and arguments, `-h`, `compare`.
+//! Every test works in its own fresh temp folder, with the scene copied into it.
+
+#[path = "../common/mod.rs"]
+mod common;
+
+use common::*;
+use image::{GenericImageView, RgbImage};
+use std::fs;
+use std::path::Path;
+
+/// The decoded image at `path` as RGB8, checking its size.
+fn image_of(path: &Path, w: u32, h: u32) -> RgbImage {
+    let img = image::open(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    assert_eq!(img.dimensions(), (w, h), "{}", path.display());
+    img.to_rgb8()
+}
+
+/// A temp folder holding a copy of seed scene 1 as `scene1.sc`.
+fn with_scene1(name: &str) -> TempDir {
+    let dir = TempDir::new(name);
+    dir.copy_in(&seed_scene(1), "scene1.sc");
+    dir
+}
+
+/// Runs the binary in `dir` and asserts success.
+fn ok(dir: &TempDir, args: &[&str]) -> std::process::Output {
+    let o = run(&dir.path, args);
+    assert_success(&o, &args.join(" "));
+    o
+}
+
+mod help_compare;
+mod invocations;
+mod npy;
+mod rejected;
+mod stats;
