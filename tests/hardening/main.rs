@@ -1,0 +1,157 @@
+//! Hardening through the real binary: every rejected input in tests/bad/ ends in a
+//! clear message, exit code 2 and no output; failed or interrupted runs never damage an
+//! existing output file nor leave a temporary file; numbers that parse but break f32
+//! arithmetic are rejected or rendered without NaN; regressions found by fuzzing.
+
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+const CAM: &str = "camera eye 0 0 5 look 0 0 0 up 0 1 0\n";
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_lanecast"))
+}
+
+fn bad_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests")
+        .join("bad")
+}
+
+/// A fresh, empty folder under the system temp dir, removed on drop.
+struct TempDir(PathBuf);
+
+impl TempDir {
+    fn new(name: &str) -> TempDir {
+        static N: AtomicU64 = AtomicU64::new(0);
+        let n = N.fetch_add(1, Ordering::Relaxed);
+        let dir = std::env::temp_dir().join(format!(
+            "lanecast-hardening-{}-{n}-{name}",
+            std::process::id()
+        ));
+        let _ = fs::remove_dir_all(&dir);
+        fs::create_dir_all(&dir).unwrap();
+        TempDir(dir)
+    }
+
+    fn path(&self, name: &str) -> PathBuf {
+        self.0.join(name)
+    }
+
+    /// Entry names, sorted (temporary files included).
+    fn entries(&self) -> Vec<String> {
+        entries(&self.0)
+    }
+}
+
+fn entries(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            let _ = fs::set_permissions(&self.0, fs::Permissions::from_mode(0o755));
+        }
+        let _ = fs::remove_dir_all(&self.0);
+    }
+}
+
+fn run(args: &[&std::ffi::OsStr]) -> Output {
+    bin().args(args).output().expect("run lanecast")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Renders `input` small into `out` with ids and depth next to it; returns the output.
+fn render_into(input: &Path, out: &TempDir) -> Output {
+    let (png, ids, depth) = (
+        out.path("out.png"),
+        out.path("ids.npy"),
+        out.path("depth.npy"),
+    );
+    run(&[
+        "-i".as_ref(),
+        input.as_os_str(),
+        "-o".as_ref(),
+        png.as_os_str(),
+        "--ids".as_ref(),
+        ids.as_os_str(),
+        "--depth".as_ref(),
+        depth.as_os_str(),
+        "-size".as_ref(),
+        "32x24".as_ref(),
+    ])
+}
+
+/// Files in tests/bad/ whose first line cannot carry an `# expect:` comment.
+const NO_HEADER: [(&str, Option<usize>); 1] = [("empty.sc", None)];
+
+/// The expected line of a fixture: from `# expect: N` (`-`: whole-file error, no line).
+fn expected_line(path: &Path) -> Option<usize> {
+    let name = path.file_name().unwrap().to_str().unwrap();
+    if let Some((_, line)) = NO_HEADER.iter().find(|(n, _)| *n == name) {
+        return *line;
+    }
+    let bytes = fs::read(path).unwrap();
+    let first = bytes.split(|&b| b == b'\n').next().unwrap();
+    let first = std::str::from_utf8(first).unwrap();
+    let spec = first
+        .strip_prefix("# expect: ")
+        .unwrap_or_else(|| panic!("{name}: first line must be `# expect: LINE (why)`"));
+    let word = spec.split_whitespace().next().unwrap();
+    if word == "-" {
+        None
+    } else {
+        Some(word.parse().unwrap())
+    }
+}
+
+/// Asserts a rejected run: exit 2, one `lanecast: error: ` message naming the file and the
+/// line, and nothing written into `out`.
+fn assert_rejected(input: &Path, line: Option<usize>, o: &Output, out: &TempDir) {
+    let name = input.file_name().unwrap().to_str().unwrap();
+    let err = stderr(o);
+    assert_eq!(o.status.code(), Some(2), "{name}: {err}");
+    assert!(err.starts_with("lanecast: error: "), "{name}: {err:?}");
+    let at = match line {
+        Some(l) => format!("{name}:{l}:"),
+        None => format!("{name}: "),
+    };
+    assert!(err.contains(&at), "{name}: expected {at:?} in {err:?}");
+    assert_eq!(
+        err.lines().count(),
+        1,
+        "{name}: one line of message: {err:?}"
+    );
+    assert!(o.stdout.is_empty(), "{name}");
+    assert_eq!(
+        out.entries(),
+        Vec::<String>::new(),
+        "{name}: output appeared"
+    );
+}
+
+/// A small valid scene written to `dir/name`.
+fn good_scene(dir: &TempDir, name: &str) -> PathBuf {
+    let p = dir.path(name);
+    fs::write(&p, format!("{CAM}sphere 0 0 0 1\n")).unwrap();
+    p
+}
+
+mod fixtures;
+mod fuzz;
+mod limits;
+mod numbers;
+mod outputs;
