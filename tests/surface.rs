@@ -165,7 +165,7 @@ fn normals_face_the_eye_and_match_the_exact_hit_at_every_scale() {
                     let exact = (camera.eye + d * t64 - center).normalize();
                     let exact = if inside { -exact } else { exact };
                     // the stated error: the f32 depth's own, at most 48u / cos of the
-                    // incidence relative (tests/agreement.rs, COND_BOUND_U), moves the hit
+                    // incidence relative (tests/agreement/main.rs, COND_BOUND_U), moves the hit
                     // along the ray, turning the normal by up to that distance over r; and
                     // the f32 rounding of the normal
                     let cos = exact.dot(d).abs();

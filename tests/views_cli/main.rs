@@ -1,0 +1,209 @@
+//! Many views from one run (`--views FILE`, `--orbit N`): every view's ids and depths equal a
+//! one-view run with the same camera, byte for byte, whatever the acceleration or thread count;
+//! numbered outputs, `-o -` as a stream of images, `--skip-existing`, and the refusals that
+//! come before anything is written.
+
+#[path = "../common/mod.rs"]
+mod common;
+
+use common::*;
+use glam::DVec3;
+use lanecast::scene::views::orbit;
+use std::fs;
+use std::path::Path;
+
+/// A views file of `n` cameras on an orbit of `scene`'s camera, fovs varied, written with
+/// Rust's shortest round-trip formatting so `--eye`/`--look`/`--up` can repeat them exactly.
+fn views_of(scene: &Path, n: usize) -> (String, Vec<[String; 4]>) {
+    let s = lanecast::load_scene(scene).unwrap();
+    let mut text = String::from("# an orbit\n\n");
+    let mut flags = Vec::new();
+    for (k, c) in orbit(&s.camera, n).iter().enumerate() {
+        let v = |p: DVec3| format!("{},{},{}", p.x, p.y, p.z);
+        let w = |p: DVec3| format!("{} {} {}", p.x, p.y, p.z);
+        let fov = 20.0 + 13.0 * k as f64;
+        text += &format!(
+            "camera eye {} look {} up {} fov {fov}\n",
+            w(c.eye),
+            w(c.look),
+            w(c.up)
+        );
+        flags.push([v(c.eye), v(c.look), v(c.up), fov.to_string()]);
+    }
+    (text, flags)
+}
+
+fn read(p: &Path) -> Vec<u8> {
+    fs::read(p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
+}
+
+mod refusals;
+mod resume;
+
+#[test]
+fn every_view_equals_a_run_of_its_own() {
+    let dir = TempDir::new("views-equal");
+    let mesh = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/teapot.sc");
+    let stress = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/stress/grazing.sc");
+    for scene in [seed_scene(2), seed_scene(4), mesh, stress] {
+        let (text, flags) = views_of(&scene, 5);
+        let views = dir.write("views.txt", &text);
+        let scene_s = scene.to_str().unwrap();
+        for accel in ["auto", "none", "bvh"] {
+            for threads in ["1", "2"] {
+                let o = run(
+                    &dir.path,
+                    &[
+                        "-i",
+                        scene_s,
+                        "--views",
+                        views.to_str().unwrap(),
+                        "-size",
+                        "96x64",
+                        "--accel",
+                        accel,
+                        "--threads",
+                        threads,
+                        "-o",
+                        "f%d.bmp",
+                        "--ids",
+                        "i%d.npy",
+                        "--depth",
+                        "d%d.npy",
+                    ],
+                );
+                assert_success(&o, &format!("{scene_s} {accel} {threads}"));
+                for (k, [eye, look, up, fov]) in flags.iter().enumerate() {
+                    let o = run(
+                        &dir.path,
+                        &[
+                            "-i",
+                            scene_s,
+                            "--eye",
+                            eye,
+                            "--look",
+                            look,
+                            "--up",
+                            up,
+                            "-fov",
+                            fov,
+                            "-size",
+                            "96x64",
+                            "--accel",
+                            "none",
+                            "-o",
+                            "one.bmp",
+                            "--ids",
+                            "one_i.npy",
+                            "--depth",
+                            "one_d.npy",
+                        ],
+                    );
+                    assert_success(&o, "one view");
+                    let what = format!("{scene_s} view {k} accel {accel} threads {threads}");
+                    for (many, one) in [
+                        (format!("f{k}.bmp"), "one.bmp"),
+                        (format!("i{k}.npy"), "one_i.npy"),
+                        (format!("d{k}.npy"), "one_d.npy"),
+                    ] {
+                        assert!(
+                            read(&dir.join(&many)) == read(&dir.join(one)),
+                            "{what}: {many}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn an_orbit_is_the_views_file_of_its_cameras() {
+    let dir = TempDir::new("views-orbit");
+    let scene = seed_scene(1);
+    let s = lanecast::load_scene(&scene).unwrap();
+    let text: String = orbit(&s.camera, 7)
+        .iter()
+        .map(|c| {
+            let w = |p: DVec3| format!("{} {} {}", p.x, p.y, p.z);
+            format!(
+                "camera eye {} look {} up {}\n",
+                w(c.eye),
+                w(c.look),
+                w(c.up)
+            )
+        })
+        .collect();
+    dir.write("v.txt", &text);
+    let scene = scene.to_str().unwrap();
+    let o = run(
+        &dir.path,
+        &[
+            "-i", scene, "--orbit", "7", "--ids", "o%d.npy", "-o", "o%d.png",
+        ],
+    );
+    assert_success(&o, "orbit");
+    let o = run(
+        &dir.path,
+        &[
+            "-i", scene, "--views", "v.txt", "--ids", "v%d.npy", "-o", "v%d.png",
+        ],
+    );
+    assert_success(&o, "views");
+    let mut distinct = std::collections::HashSet::new();
+    for k in 0..7 {
+        let (a, b) = (
+            read(&dir.join(&format!("o{k}.npy"))),
+            read(&dir.join(&format!("v{k}.npy"))),
+        );
+        assert!(a == b, "view {k}");
+        distinct.insert(a);
+    }
+    assert_eq!(distinct.len(), 7, "a turntable's views differ");
+    assert!(!dir.join("o7.npy").exists());
+}
+
+#[test]
+fn standard_output_carries_one_image_per_view() {
+    let dir = TempDir::new("views-stdout");
+    let scene = seed_scene(3);
+    let o = run(
+        &dir.path,
+        &[
+            "-i",
+            scene.to_str().unwrap(),
+            "--orbit",
+            "4",
+            "-o",
+            "-",
+            "-size",
+            "64x48",
+        ],
+    );
+    assert_success(&o, "-o -");
+    let png = b"\x89PNG\r\n\x1a\n";
+    let starts = o.stdout.windows(8).filter(|w| w == png).count();
+    assert_eq!(starts, 4);
+    assert!(o.stdout.starts_with(png));
+    // with --format bmp and numbered ids beside
+    let o = run(
+        &dir.path,
+        &[
+            "-i",
+            scene.to_str().unwrap(),
+            "--orbit",
+            "3",
+            "-o",
+            "-",
+            "--format",
+            "bmp",
+            "-size",
+            "64x48",
+            "--ids",
+            "i%d.npy",
+        ],
+    );
+    assert_success(&o, "-o - bmp");
+    assert_eq!(o.stdout.len(), 3 * (54 + 64 * 48 * 3));
+    assert_eq!(dir.entries(), ["i0.npy", "i1.npy", "i2.npy"]);
+}

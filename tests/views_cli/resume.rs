@@ -1,0 +1,203 @@
+//! Runs that stop, skip or share a folder: finished views kept whole, reruns completing them.
+
+use super::*;
+
+#[test]
+fn skip_existing_renders_only_missing_views() {
+    let dir = TempDir::new("views-skip");
+    let scene = seed_scene(5);
+    let args = |extra: &[&'static str]| {
+        let mut a = vec![
+            "-i",
+            scene.to_str().unwrap(),
+            "--orbit",
+            "5",
+            "-o",
+            "f%d.png",
+            "--ids",
+            "i%d.npy",
+            "--stats",
+            "s.json",
+            "-size",
+            "64x48",
+        ];
+        a.extend_from_slice(extra);
+        a.into_iter().map(String::from).collect::<Vec<_>>()
+    };
+    fn as_refs(v: &[String]) -> Vec<&str> {
+        v.iter().map(String::as_str).collect()
+    }
+    let full = args(&[]);
+    assert_success(&run(&dir.path, &as_refs(&full)), "first run");
+    let before: Vec<Vec<u8>> = (0..5)
+        .map(|k| read(&dir.join(&format!("i{k}.npy"))))
+        .collect();
+    fs::remove_file(dir.join("f2.png")).unwrap();
+    fs::remove_file(dir.join("i4.npy")).unwrap();
+    fs::write(dir.join("i0.npy"), b"kept").unwrap();
+    let again = args(&["--skip-existing"]);
+    assert_success(&run(&dir.path, &as_refs(&again)), "rerun");
+    let stats: serde_json::Value = serde_json::from_slice(&read(&dir.join("s.json"))).unwrap();
+    assert_eq!(stats["views"]["rendered"], 2);
+    assert_eq!(stats["views"]["skipped"], 3);
+    // each rendered view records what it left out and how many renders it took; the first
+    // view of a run has nothing to guess from and leaves nothing out
+    let each = stats["views"]["each"].as_array().unwrap();
+    assert_eq!(each.len(), 2);
+    assert_eq!(
+        (each[0]["left_out"].as_u64(), each[0]["renders"].as_u64()),
+        (Some(0), Some(1))
+    );
+    assert!(
+        each.iter()
+            .all(|v| v["renders"].as_u64().is_some_and(|r| (1..=3).contains(&r)))
+    );
+    assert_eq!(
+        read(&dir.join("i0.npy")),
+        b"kept",
+        "a complete view is left alone"
+    );
+    for (k, was) in before.iter().enumerate().skip(1) {
+        assert!(read(&dir.join(&format!("i{k}.npy"))) == *was, "view {k}");
+        assert!(dir.join(&format!("f{k}.png")).is_file());
+    }
+    // --skip-existing needs views
+    let o = run(
+        &dir.path,
+        &["-i", scene.to_str().unwrap(), "--skip-existing"],
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("--skip-existing applies to runs of many views"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+/// A run killed part way leaves its finished views whole and no temporary file; a rerun with
+/// `--skip-existing` completes the set, equal to an uninterrupted run.
+#[cfg(unix)]
+#[test]
+fn a_killed_run_keeps_finished_views_and_a_rerun_completes_them() {
+    use std::process::{Command, Stdio};
+    use std::time::{Duration, Instant};
+    let dir = TempDir::new("views-kill");
+    // slow enough per view (scalar f64 kernel, no acceleration) to be killed in the middle
+    let mut text = String::from("camera eye 0 0 30 look 0 0 0 up 0 1 0\n");
+    for i in 0..200 {
+        text += &format!(
+            "sphere {} {} 0 0.4\n",
+            (i % 20) as f64 - 10.0,
+            (i / 20) as f64 - 5.0
+        );
+    }
+    dir.write("s.sc", &text);
+    let args = [
+        "-i",
+        "s.sc",
+        "--orbit",
+        "12",
+        "-size",
+        "320x240",
+        "--kernel",
+        "scalar",
+        "--accel",
+        "none",
+        "--threads",
+        "1",
+        "-o",
+        "f%02d.png",
+        "--ids",
+        "i%02d.npy",
+    ];
+    let mut child = Command::new(env!("CARGO_BIN_EXE_lanecast"))
+        .args(args)
+        .current_dir(&dir.path)
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let start = Instant::now();
+    while !dir.join("i01.npy").exists() && start.elapsed() < Duration::from_secs(60) {
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    child.kill().unwrap();
+    child.wait().unwrap();
+    let entries = dir.entries();
+    let done: Vec<usize> = (0..12)
+        .filter(|k| dir.join(&format!("i{k:02}.npy")).exists())
+        .collect();
+    assert!(
+        !done.is_empty() && done.len() < 12,
+        "killed with {done:?} done"
+    );
+    for &k in &done {
+        assert!(
+            dir.join(&format!("f{k:02}.png")).exists(),
+            "view {k} is whole: {entries:?}"
+        );
+    }
+    // the next run removes the killed run's temporaries, then fills in the rest
+    let mut again: Vec<&str> = args.to_vec();
+    again.push("--skip-existing");
+    assert_success(&run(&dir.path, &again), "rerun");
+    let after = dir.entries();
+    assert!(
+        after.iter().all(|e| !e.ends_with(".lanecast-tmp")),
+        "{after:?}"
+    );
+    let fresh = TempDir::new("views-kill-fresh");
+    fresh.write("s.sc", &text);
+    assert_success(&run(&fresh.path, &args), "uninterrupted");
+    for k in 0..12 {
+        for name in [format!("f{k:02}.png"), format!("i{k:02}.npy")] {
+            assert!(read(&dir.join(&name)) == read(&fresh.join(&name)), "{name}");
+        }
+    }
+}
+
+/// Two many-view runs writing different frames into one folder at once both complete: each
+/// view's set takes the folder's lock only to create its temporaries and to commit.
+#[cfg(unix)]
+#[test]
+fn concurrent_view_runs_into_one_folder_both_complete() {
+    use std::process::{Command, Stdio};
+    let dir = TempDir::new("views-concurrent");
+    let scene = seed_scene(2);
+    let scene = scene.to_str().unwrap();
+    let spawn = |prefix: &str| {
+        Command::new(env!("CARGO_BIN_EXE_lanecast"))
+            .args([
+                "-i",
+                scene,
+                "--orbit",
+                "8",
+                "-size",
+                "160x120",
+                "--threads",
+                "1",
+            ])
+            .args([
+                "-o",
+                &format!("{prefix}%d.png"),
+                "--ids",
+                &format!("{prefix}%d.npy"),
+            ])
+            .current_dir(&dir.path)
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap()
+    };
+    let (a, b) = (spawn("a"), spawn("b"));
+    for child in [a, b] {
+        let o = child.wait_with_output().unwrap();
+        assert_success(&o, "concurrent view run");
+    }
+    for k in 0..8 {
+        let (ia, ib) = (format!("a{k}.npy"), format!("b{k}.npy"));
+        assert!(read(&dir.join(&ia)) == read(&dir.join(&ib)), "view {k}");
+    }
+    let entries = dir.entries();
+    assert_eq!(entries.len(), 32, "{entries:?}");
+}
