@@ -12,6 +12,7 @@
 //! combinations" is the table of these rules.
 
 mod args;
+mod camera;
 mod views;
 
 use crate::error::{Error, Result};
@@ -19,6 +20,8 @@ use crate::output::ImageFormat;
 use crate::shade::{ColorMode, Variation};
 pub use args::{AccelArg, KernelArg};
 use args::{Cli, Sub, View};
+pub use camera::CameraOverrides;
+use camera::parse_vec3;
 use clap::parser::ValueSource;
 use clap::{ArgMatches, CommandFactory, FromArgMatches};
 use std::ffi::OsString;
@@ -79,57 +82,6 @@ pub struct ViewSettings {
     pub method: crate::render::Method,
     /// Camera overrides from `--eye`, `--look`, `--up`, each with the flag as typed.
     pub camera: CameraOverrides,
-}
-
-/// `--eye`, `--look` and `--up`: each replaces that part of the scene's camera.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct CameraOverrides {
-    pub eye: Option<glam::DVec3>,
-    pub look: Option<glam::DVec3>,
-    pub up: Option<glam::DVec3>,
-}
-
-impl CameraOverrides {
-    /// `spec` with the overrides applied, checked by the camera line's own rules; an error
-    /// names the flags typed.
-    pub fn apply(&self, spec: &mut crate::scene::CameraSpec) -> Result<()> {
-        if *self == CameraOverrides::default() {
-            return Ok(());
-        }
-        spec.eye = self.eye.unwrap_or(spec.eye);
-        spec.look = self.look.unwrap_or(spec.look);
-        spec.up = self.up.unwrap_or(spec.up);
-        crate::scene::validate::camera(spec).map_err(|m| {
-            let flags: Vec<&str> = [
-                ("--eye", self.eye),
-                ("--look", self.look),
-                ("--up", self.up),
-            ]
-            .iter()
-            .filter(|(_, v)| v.is_some())
-            .map(|(f, _)| *f)
-            .collect();
-            Error::usage(format!("{}: {m}", flags.join(", ")))
-        })
-    }
-}
-
-/// A point or direction `X,Y,Z` of `flag`: three finite decimal numbers.
-fn parse_vec3(flag: &str, text: &str) -> Result<glam::DVec3> {
-    let bad = || {
-        Error::usage(format!(
-            "{flag} {text}: expected three finite numbers X,Y,Z"
-        ))
-    };
-    let v: Vec<f64> = text
-        .split(',')
-        .map(|p| p.trim().parse::<f64>().ok().filter(|x| x.is_finite()))
-        .collect::<Option<_>>()
-        .ok_or_else(bad)?;
-    match v[..] {
-        [x, y, z] => Ok(glam::DVec3::new(x, y, z)),
-        _ => Err(bad()),
-    }
 }
 
 #[derive(Debug, Clone, PartialEq)]
