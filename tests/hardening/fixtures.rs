@@ -26,10 +26,10 @@ fn bom_crlf_valid_scene_renders() {
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     assert!(o.stderr.is_empty(), "{}", stderr(&o));
     assert_eq!(out.entries(), ["depth.npy", "ids.npy", "out.png"]);
-    let img = fs::read(out.path("out.png")).unwrap();
+    let img = fs::read(out.join("out.png")).unwrap();
     assert_eq!(&img[..8], b"\x89PNG\r\n\x1a\n");
     // Both primitives are visible: ids 0 and 1 appear in the id buffer.
-    let ids = fs::read(out.path("ids.npy")).unwrap();
+    let ids = fs::read(out.join("ids.npy")).unwrap();
     let ids: Vec<i32> = ids[128..]
         .chunks(4)
         .map(|c| i32::from_le_bytes(c.try_into().unwrap()))
@@ -40,7 +40,7 @@ fn bom_crlf_valid_scene_renders() {
 #[test]
 fn one_megabyte_line_is_rejected() {
     let input = TempDir::new("long-in");
-    let path = input.path("long_line.sc");
+    let path = input.join("long_line.sc");
     let mut text = String::from(CAM);
     text.push_str("sphere 0 0 0 1 ");
     text.push_str(&"7 ".repeat(512 * 1024));

@@ -7,7 +7,7 @@ fn image_limits_are_refused_before_any_work() {
     use lanecast::limits::{MAX_PIXELS, MAX_SIDE};
     let dir = TempDir::new("limits");
     let scene = good_scene(&dir, "s.sc");
-    let out = dir.path("o.png");
+    let out = dir.join("o.png");
     let too_wide = format!("{}x1", MAX_SIDE + 1);
     let side = (MAX_PIXELS as f64).sqrt() as u64 + 1;
     let too_many = format!("{side}x{side}");
@@ -33,7 +33,7 @@ fn image_limits_are_refused_before_any_work() {
 fn scene_file_over_the_size_limit_is_refused_before_reading() {
     use lanecast::limits::MAX_SCENE_BYTES;
     let dir = TempDir::new("bigfile");
-    let path = dir.path("huge.sc");
+    let path = dir.join("huge.sc");
     // A sparse file: no disk space used, and lanecast must not read it.
     fs::File::create(&path)
         .unwrap()

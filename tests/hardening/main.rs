@@ -3,10 +3,13 @@
 //! existing output file nor leave a temporary file; numbers that parse but break f32
 //! arithmetic are rejected or rendered without NaN; regressions found by fuzzing.
 
+#[path = "../common/mod.rs"]
+mod common;
+
+use common::TempDir;
 use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-use std::sync::atomic::{AtomicU64, Ordering};
 
 const CAM: &str = "camera eye 0 0 5 look 0 0 0 up 0 1 0\n";
 
@@ -20,52 +23,6 @@ fn bad_dir() -> PathBuf {
         .join("bad")
 }
 
-/// A fresh, empty folder under the system temp dir, removed on drop.
-struct TempDir(PathBuf);
-
-impl TempDir {
-    fn new(name: &str) -> TempDir {
-        static N: AtomicU64 = AtomicU64::new(0);
-        let n = N.fetch_add(1, Ordering::Relaxed);
-        let dir = std::env::temp_dir().join(format!(
-            "lanecast-hardening-{}-{n}-{name}",
-            std::process::id()
-        ));
-        let _ = fs::remove_dir_all(&dir);
-        fs::create_dir_all(&dir).unwrap();
-        TempDir(dir)
-    }
-
-    fn path(&self, name: &str) -> PathBuf {
-        self.0.join(name)
-    }
-
-    /// Entry names, sorted (temporary files included).
-    fn entries(&self) -> Vec<String> {
-        entries(&self.0)
-    }
-}
-
-fn entries(dir: &Path) -> Vec<String> {
-    let mut names: Vec<String> = fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
-    names
-}
-
-impl Drop for TempDir {
-    fn drop(&mut self) {
-        #[cfg(unix)]
-        {
-            use std::os::unix::fs::PermissionsExt;
-            let _ = fs::set_permissions(&self.0, fs::Permissions::from_mode(0o755));
-        }
-        let _ = fs::remove_dir_all(&self.0);
-    }
-}
-
 fn run(args: &[&std::ffi::OsStr]) -> Output {
     bin().args(args).output().expect("run lanecast")
 }
@@ -77,9 +34,9 @@ fn stderr(o: &Output) -> String {
 /// Renders `input` small into `out` with ids and depth next to it; returns the output.
 fn render_into(input: &Path, out: &TempDir) -> Output {
     let (png, ids, depth) = (
-        out.path("out.png"),
-        out.path("ids.npy"),
-        out.path("depth.npy"),
+        out.join("out.png"),
+        out.join("ids.npy"),
+        out.join("depth.npy"),
     );
     run(&[
         "-i".as_ref(),
@@ -145,7 +102,7 @@ fn assert_rejected(input: &Path, line: Option<usize>, o: &Output, out: &TempDir)
 
 /// A small valid scene written to `dir/name`.
 fn good_scene(dir: &TempDir, name: &str) -> PathBuf {
-    let p = dir.path(name);
+    let p = dir.join(name);
     fs::write(&p, format!("{CAM}sphere 0 0 0 1\n")).unwrap();
     p
 }

@@ -3,7 +3,7 @@
 use super::*;
 
 fn scene_in(dir: &TempDir, body: &str) -> PathBuf {
-    let p = dir.path("s.sc");
+    let p = dir.join("s.sc");
     fs::write(&p, body).unwrap();
     p
 }
@@ -29,7 +29,7 @@ pub(crate) fn render_both(body: &str) -> Vec<Vec<i32>> {
     );
     let mut all = Vec::new();
     for kernel in ["simd", "scalar"] {
-        let (png, ids, depth) = (dir.path("o.png"), dir.path("i.npy"), dir.path("d.npy"));
+        let (png, ids, depth) = (dir.join("o.png"), dir.join("i.npy"), dir.join("d.npy"));
         let o = run(&[
             "-i".as_ref(),
             scene.as_os_str(),

@@ -8,9 +8,9 @@ fn missing_output_folder_fails_and_creates_nothing() {
     let scene = good_scene(&dir, "s.sc");
     for flag in ["-o", "--ids", "--depth"] {
         let target = dir
-            .path("nope")
+            .join("nope")
             .join(if flag == "-o" { "x.png" } else { "x.npy" });
-        let png = dir.path("ok.png");
+        let png = dir.join("ok.png");
         let mut args: Vec<&std::ffi::OsStr> = vec!["-i".as_ref(), scene.as_os_str()];
         if flag != "-o" {
             args.extend(["-o".as_ref(), png.as_os_str()]);
@@ -26,7 +26,7 @@ fn missing_output_folder_fails_and_creates_nothing() {
         assert_eq!(o.status.code(), Some(1), "{flag}: {err}");
         assert!(err.starts_with("lanecast: error: "), "{err}");
         assert!(err.contains(&target.display().to_string()), "{err}");
-        assert!(!dir.path("nope").exists());
+        assert!(!dir.join("nope").exists());
         let _ = fs::remove_file(&png);
         assert_eq!(dir.entries(), ["s.sc"], "{flag}");
     }
@@ -39,10 +39,10 @@ fn read_only_folder_keeps_existing_file() {
     let dir = TempDir::new("ro");
     let scene_dir = TempDir::new("ro-scene");
     let scene = good_scene(&scene_dir, "s.sc");
-    let target = dir.path("out.png");
+    let target = dir.join("out.png");
     fs::write(&target, b"old").unwrap();
-    fs::set_permissions(&dir.0, fs::Permissions::from_mode(0o555)).unwrap();
-    let probe = dir.path("probe");
+    fs::set_permissions(&dir.path, fs::Permissions::from_mode(0o555)).unwrap();
+    let probe = dir.join("probe");
     if fs::File::create(&probe).is_ok() {
         // Running as root: permission bits are not enforced, nothing to test.
         let _ = fs::remove_file(&probe);
@@ -67,16 +67,16 @@ fn read_only_folder_keeps_existing_file() {
 #[test]
 fn existing_output_survives_a_failed_render() {
     let dir = TempDir::new("survive");
-    let scene = dir.path("bad.sc");
+    let scene = dir.join("bad.sc");
     fs::write(&scene, format!("{CAM}sphere 0 0 0 -1\n")).unwrap();
     for (name, old) in [
         ("out.png", "old png"),
         ("ids.npy", "old ids"),
         ("d.npy", "old d"),
     ] {
-        fs::write(dir.path(name), old).unwrap();
+        fs::write(dir.join(name), old).unwrap();
     }
-    let (png, ids, depth) = (dir.path("out.png"), dir.path("ids.npy"), dir.path("d.npy"));
+    let (png, ids, depth) = (dir.join("out.png"), dir.join("ids.npy"), dir.join("d.npy"));
     let o = run(&[
         "-i".as_ref(),
         scene.as_os_str(),
@@ -99,7 +99,7 @@ fn existing_output_survives_a_failed_render() {
 fn existing_output_survives_a_failed_write() {
     let dir = TempDir::new("failwrite");
     let scene = good_scene(&dir, "s.sc");
-    let old = dir.path("old.png");
+    let old = dir.join("old.png");
     fs::write(&old, b"old").unwrap();
     // A "folder" that is a file.
     let into_file = old.join("x.png");
@@ -114,7 +114,7 @@ fn existing_output_survives_a_failed_write() {
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert_eq!(fs::read(&old).unwrap(), b"old");
     // A target that is a folder: the rename fails, the folder and its content stay.
-    let folder = dir.path("dir.png");
+    let folder = dir.join("dir.png");
     fs::create_dir(&folder).unwrap();
     fs::write(folder.join("keep"), b"k").unwrap();
     let o = run(&[
@@ -130,7 +130,7 @@ fn existing_output_survives_a_failed_write() {
     // A later output that cannot be written (ids into a file-as-folder): refused before any
     // work, so the image is not written either (the outputs are a set) and nothing temporary
     // is left.
-    let png = dir.path("new.png");
+    let png = dir.join("new.png");
     let ids = old.join("ids.npy");
     let o = run(&[
         "-i".as_ref(),
@@ -151,7 +151,7 @@ fn existing_output_survives_a_failed_write() {
 #[test]
 fn output_equal_to_input_is_refused() {
     let dir = TempDir::new("same");
-    let other = dir.path("out.png");
+    let other = dir.join("out.png");
     for flag in ["-o", "--ids", "--depth"] {
         // The scene is named like the output so that only the same-file rule can refuse it.
         let name = if flag == "-o" {
@@ -166,7 +166,7 @@ fn output_equal_to_input_is_refused() {
             args.extend(["-o".as_ref(), other.as_os_str()]);
         }
         // Same file under another spelling.
-        let spelled = dir.0.join(".").join(name);
+        let spelled = dir.path.join(".").join(name);
         args.extend([
             flag.as_ref(),
             spelled.as_os_str(),
@@ -214,9 +214,9 @@ fn sigint(pid: u32) {
 fn sigint_during_render_keeps_previous_output() {
     use std::time::{Duration, Instant};
     let dir = TempDir::new("sigint");
-    let scene = dir.path("many.sc");
+    let scene = dir.join("many.sc");
     fs::write(&scene, many_spheres(2000)).unwrap();
-    let out = dir.path("out.png");
+    let out = dir.join("out.png");
     fs::write(&out, b"previous").unwrap();
     let child = bin()
         .args([
@@ -257,12 +257,12 @@ fn sigint_during_write_removes_temporary_file() {
     use std::time::{Duration, Instant};
     let dir = TempDir::new("sigint-write");
     let scene_dir = TempDir::new("sigint-write-scene");
-    let scene = scene_dir.path("s.sc");
+    let scene = scene_dir.join("s.sc");
     fs::write(&scene, format!("{CAM}sphere 0 0 0 1\n")).unwrap();
     let (png, ids, depth) = (
-        dir.path("out.png"),
-        dir.path("ids.npy"),
-        dir.path("depth.npy"),
+        dir.join("out.png"),
+        dir.join("ids.npy"),
+        dir.join("depth.npy"),
     );
     let mut caught = 0;
     for _attempt in 0..5 {
