@@ -38,7 +38,13 @@ fn render_into(input: &Path, out: &TempDir) -> Output {
         out.join("ids.npy"),
         out.join("depth.npy"),
     );
-    run(&[
+    render_outputs(input, [&png, &ids, &depth], &["-size", "32x24"])
+}
+
+/// Runs `input` with its image, ids and depth written to `png`, `ids` and `depth`, and the
+/// flags `extra` after them.
+fn render_outputs(input: &Path, [png, ids, depth]: [&Path; 3], extra: &[&str]) -> Output {
+    let mut args: Vec<&std::ffi::OsStr> = vec![
         "-i".as_ref(),
         input.as_os_str(),
         "-o".as_ref(),
@@ -47,9 +53,9 @@ fn render_into(input: &Path, out: &TempDir) -> Output {
         ids.as_os_str(),
         "--depth".as_ref(),
         depth.as_os_str(),
-        "-size".as_ref(),
-        "32x24".as_ref(),
-    ])
+    ];
+    args.extend(extra.iter().map(std::ffi::OsStr::new));
+    run(&args)
 }
 
 /// Files in tests/bad/ whose first line cannot carry an `# expect:` comment.

@@ -30,20 +30,8 @@ pub(crate) fn render_both(body: &str) -> Vec<Vec<i32>> {
     let mut all = Vec::new();
     for kernel in ["simd", "scalar"] {
         let (png, ids, depth) = (dir.join("o.png"), dir.join("i.npy"), dir.join("d.npy"));
-        let o = run(&[
-            "-i".as_ref(),
-            scene.as_os_str(),
-            "-o".as_ref(),
-            png.as_os_str(),
-            "--ids".as_ref(),
-            ids.as_os_str(),
-            "--depth".as_ref(),
-            depth.as_os_str(),
-            "-size".as_ref(),
-            "64x48".as_ref(),
-            "--kernel".as_ref(),
-            kernel.as_ref(),
-        ]);
+        let extra = ["-size", "64x48", "--kernel", kernel];
+        let o = render_outputs(&scene, [&png, &ids, &depth], &extra);
         assert_eq!(o.status.code(), Some(0), "{kernel}: {}", stderr(&o));
         let d = fs::read(&depth).unwrap();
         let nan = d[128..]

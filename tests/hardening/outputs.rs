@@ -77,16 +77,7 @@ fn existing_output_survives_a_failed_render() {
         fs::write(dir.join(name), old).unwrap();
     }
     let (png, ids, depth) = (dir.join("out.png"), dir.join("ids.npy"), dir.join("d.npy"));
-    let o = run(&[
-        "-i".as_ref(),
-        scene.as_os_str(),
-        "-o".as_ref(),
-        png.as_os_str(),
-        "--ids".as_ref(),
-        ids.as_os_str(),
-        "--depth".as_ref(),
-        depth.as_os_str(),
-    ]);
+    let o = render_outputs(&scene, [&png, &ids, &depth], &[]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("bad.sc:2:"), "{}", stderr(&o));
     assert_eq!(fs::read(&png).unwrap(), b"old png");
