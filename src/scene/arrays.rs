@@ -11,7 +11,7 @@
 //! Every error names the array and its 0-based row (`quads row 3: quad is not planar: ...`),
 //! as an [`Error::Usage`].
 
-use super::parse::framing_camera;
+use super::parse::framing_camera_of;
 use super::{CameraSpec, Mesh, Scene, Shape, Shapes, obj, range, validate};
 use crate::error::{Error, Result};
 use crate::limits::MAX_PRIMITIVES;
@@ -19,10 +19,11 @@ use glam::DVec3;
 use std::path::Path;
 
 /// A scene of `triangles` and `quads` (rows of indices into `vertices`) and `spheres` (rows
-/// of centre x, y, z and radius), seen from `camera`, or when it is `None` from the camera
-/// `lanecast -i mesh.obj` would use for the triangles alone (README "Rendering an OBJ
-/// directly"; a scene without triangles needs a camera). `source` names the scene in
-/// messages.
+/// of centre x, y, z and radius), seen from `camera`, or when it is `None` from the framing
+/// camera `lanecast -i mesh.obj` uses for a mesh alone (README "Rendering an OBJ directly"),
+/// made for the bounding box of every primitive: the triangles' vertices, the quads' corners
+/// and the spheres' bounding boxes. Every row is validated before the camera is made, so a
+/// bad row reports its own error. `source` names the scene in messages.
 ///
 /// Ids: the triangles first, in row order (0 to M-1), then the quads, then the spheres. The
 /// triangles are kept indexed, as one mesh (line 0, so a later range check names a face by
@@ -31,8 +32,9 @@ use std::path::Path;
 ///
 /// Fails with an [`Error::Usage`] naming the array and row of the first bad entry: a
 /// non-finite number, an index out of range, a quad or radius the format refuses, a camera the
-/// format refuses, a primitive the f32 kernels cannot represent from the eye, or more than
-/// `limits::MAX_PRIMITIVES` primitives in all.
+/// format refuses (or, with none given, primitives with no extent to frame), a primitive the
+/// f32 kernels cannot represent from the eye, or more than `limits::MAX_PRIMITIVES`
+/// primitives in all.
 pub fn scene_from_arrays(
     source: &Path,
     camera: Option<CameraSpec>,
@@ -96,15 +98,6 @@ pub fn scene_from_arrays(
     };
 
     let mut shapes = Shapes::new();
-    let camera = match camera {
-        Some(c) => {
-            validate::camera(&c).map_err(|m| Error::usage(format!("camera: {m}")))?;
-            c
-        }
-        None => framing_camera(&mesh).ok_or_else(|| {
-            Error::usage("camera: none given, and no triangles with extent to frame")
-        })?,
-    };
     let mut loose = Vec::with_capacity(quads.len() + spheres.len());
     for (row, q) in quads.iter().enumerate() {
         let mut v = [DVec3::ZERO; 4];
@@ -124,6 +117,20 @@ pub fn scene_from_arrays(
             radius: s[3],
         });
     }
+    // Every primitive is valid before a camera is made for them: a bad row's own error comes
+    // first, and the framing camera sees every primitive.
+    let camera = match camera {
+        Some(c) => {
+            validate::camera(&c).map_err(|m| Error::usage(format!("camera: {m}")))?;
+            c
+        }
+        None => framing_camera_of(framed_points(&mesh, &loose)).ok_or_else(|| {
+            Error::usage(
+                "camera: none given, and the primitives have no extent to frame (no \
+                 primitives, or all at one point): give a camera",
+            )
+        })?,
+    };
     let mut warnings = Vec::new();
     if degenerate > 0 {
         warnings.push(format!(
@@ -169,6 +176,32 @@ pub fn scene_from_arrays(
         other => Error::usage(other.to_string()),
     })?;
     Ok(scene)
+}
+
+/// The points whose bounding box the framing camera frames: the triangles' vertices (those
+/// the faces use), the quads' corners, and the eight corners of each sphere's bounding box
+/// (so the sphere is framed whole, whatever the framing rule).
+fn framed_points<'a>(mesh: &'a Mesh, loose: &'a [Shape]) -> impl Iterator<Item = DVec3> + 'a {
+    let triangles = mesh
+        .faces
+        .iter()
+        .flatten()
+        .map(|&i| mesh.vertices[i as usize]);
+    let shapes = loose.iter().flat_map(|s| match *s {
+        Shape::Quad(v) => v.to_vec(),
+        Shape::Sphere { center, radius } => (0..8)
+            .map(|k| {
+                let corner = DVec3::new(
+                    if k & 1 == 0 { -1.0 } else { 1.0 },
+                    if k & 2 == 0 { -1.0 } else { 1.0 },
+                    if k & 4 == 0 { -1.0 } else { 1.0 },
+                );
+                center + corner * radius
+            })
+            .collect(),
+        Shape::Triangle(v) => v.to_vec(),
+    });
+    triangles.chain(shapes)
 }
 
 #[cfg(test)]
@@ -284,15 +317,8 @@ mod tests {
             &[[0.0, f64::INFINITY, 0.0, 1.0]],
         ));
         assert!(e.starts_with("spheres row 0: "), "{e}");
-        let e = err(scene_from_arrays(
-            p,
-            None,
-            &V,
-            &[],
-            &[],
-            &[[0.0, 0.0, 0.0, 1.0]],
-        ));
-        assert!(e.starts_with("camera: "), "{e}");
+        let e = err(scene_from_arrays(p, None, &V, &[], &[], &[]));
+        assert!(e.starts_with("camera: none given"), "{e}");
         let on_look = CameraSpec {
             look: DVec3::new(0.0, 0.0, 5.0),
             ..cam().unwrap()
@@ -309,6 +335,73 @@ mod tests {
             e.starts_with("camera: camera eye and look are the same point"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn without_a_camera_bad_rows_get_their_own_error() {
+        // Validation comes before framing: no "nothing to frame" in place of the real error.
+        let p = Path::new("<arrays>");
+        for r in [0.0, -1.0, f64::NAN] {
+            let e = err(scene_from_arrays(
+                p,
+                None,
+                &V,
+                &[],
+                &[],
+                &[[0.0, 0.0, 0.0, r]],
+            ));
+            assert!(e.starts_with("spheres row 0: "), "{r}: {e}");
+        }
+        let mut bent = V;
+        bent[2][2] = 0.5;
+        let e = err(scene_from_arrays(p, None, &bent, &[], &[[0, 1, 2, 3]], &[]));
+        assert!(e.starts_with("quads row 0: quad is not planar"), "{e}");
+        let e = err(scene_from_arrays(p, None, &V, &[], &[[0, 2, 1, 3]], &[]));
+        assert!(e.starts_with("quads row 0: quad is not convex"), "{e}");
+        let e = err(scene_from_arrays(
+            p,
+            None,
+            &V,
+            &[[0, 1, 2]],
+            &[[0, 2, 1, 3]],
+            &[],
+        ));
+        assert!(e.starts_with("quads row 0: quad is not convex"), "{e}");
+    }
+
+    #[test]
+    fn without_a_camera_every_primitive_is_framed() {
+        let p = Path::new("<arrays>");
+        let frame = |quads: &[[i64; 4]], spheres: &[[f64; 4]]| {
+            scene_from_arrays(p, None, &V, &[[0, 1, 2]], quads, spheres)
+                .unwrap()
+                .camera
+        };
+        let alone = frame(&[], &[]);
+        // A sphere far to the right: the camera looks at the middle of both, from further.
+        let with_sphere = frame(&[], &[[10.0, 0.0, 0.0, 1.0]]);
+        assert_eq!(with_sphere.look, DVec3::new(5.0, 0.0, 0.0));
+        assert!(with_sphere.eye.z > alone.eye.z, "{with_sphere:?}");
+        // Spheres alone, and quads alone, are framed too (the box of a sphere: centre +- r).
+        let s = scene_from_arrays(p, None, &V, &[], &[], &[[0.0, 2.0, 0.0, 1.0]]).unwrap();
+        assert_eq!(s.camera.look, DVec3::new(0.0, 2.0, 0.0));
+        let sphere_box = (0..8).map(|k| {
+            let pick = |bit: usize, lo: f64, hi: f64| if k & bit == 0 { lo } else { hi };
+            DVec3::new(pick(1, -1.0, 1.0), pick(2, 1.0, 3.0), pick(4, -1.0, 1.0))
+        });
+        assert_eq!(Some(s.camera), framing_camera_of(sphere_box));
+        let mut far = V.to_vec();
+        far.extend([
+            [9.0, 9.0, 0.0],
+            [11.0, 9.0, 0.0],
+            [11.0, 11.0, 0.0],
+            [9.0, 11.0, 0.0],
+        ]);
+        let q = scene_from_arrays(p, None, &far, &[], &[[5, 6, 7, 8]], &[]).unwrap();
+        assert_eq!(q.camera.look, DVec3::new(10.0, 10.0, 0.0));
+        let both = scene_from_arrays(p, None, &far, &[[0, 1, 2]], &[[5, 6, 7, 8]], &[]).unwrap();
+        assert_eq!(both.camera.look, DVec3::new(5.0, 5.0, 0.0));
+        assert!(both.camera.eye.z > q.camera.eye.z);
     }
 
     #[test]

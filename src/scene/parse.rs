@@ -407,10 +407,21 @@ pub(super) fn mesh_scene(path: &Path, (mesh, degenerate): (Mesh, usize)) -> Resu
 /// most 15 degrees either side of the view axis: whole in view with the default field of view
 /// (README "Rendering an OBJ directly"). `None` when the box is a point (or there are no faces).
 pub fn framing_camera(mesh: &Mesh) -> Option<CameraSpec> {
+    framing_camera_of(
+        mesh.faces
+            .iter()
+            .flatten()
+            .map(|&i| mesh.vertices[i as usize]),
+    )
+}
+
+/// [`framing_camera`]'s camera for the bounding box of `points` (every front's rule: a mesh's
+/// vertices, a quad's corners, a sphere's bounding-box corners; `scene_from_arrays` frames
+/// all three). `None` when the box is a point, is empty, or spans more than f64 can hold.
+pub fn framing_camera_of(points: impl IntoIterator<Item = DVec3>) -> Option<CameraSpec> {
     let mut lo = DVec3::splat(f64::INFINITY);
     let mut hi = DVec3::splat(f64::NEG_INFINITY);
-    for &i in mesh.faces.iter().flatten() {
-        let v = mesh.vertices[i as usize];
+    for v in points {
         lo = lo.min(v);
         hi = hi.max(v);
     }
