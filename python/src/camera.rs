@@ -1,6 +1,7 @@
 //! Cameras: `lanecast.Camera` (eye, look, up, fov; or from intrinsics and extrinsics), and the
 //! camera arguments of a render.
 
+use crate::args;
 use crate::arrays::{py_shape, vec3};
 use crate::errors::value_error;
 use lanecast::{CameraSpec, Scene};
@@ -27,8 +28,10 @@ pub(crate) struct PyCamera {
 }
 
 impl PyCamera {
-    /// The library's camera for a `width` x `height` image: the size given, else the camera's
-    /// own (from intrinsics), else 640x480 as the command line.
+    /// The library's camera for a `width` x `height` image: the size given (both, or one
+    /// that agrees with the camera's own), else the camera's own (from intrinsics), else
+    /// 640x480 as the command line. One size without the other, for a camera without its
+    /// own, is a ValueError: no aspect ratio is guessed.
     pub(crate) fn resolve(
         &self,
         width: Option<u32>,
@@ -44,7 +47,7 @@ impl PyCamera {
                 }
                 (w, h)
             }
-            (None, w, h) => (w.unwrap_or(640), h.unwrap_or(480)),
+            (None, w, h) => both_or_neither(w, h)?,
         };
         lanecast::Camera::look_at(&self.spec, w, h).map_err(|e| value_error(e.to_string()))
     }
@@ -177,8 +180,8 @@ impl PyCamera {
         py: Python<'_>,
         K: &Bound<'_, PyAny>,
         extrinsic: &Bound<'_, PyAny>,
-        width: u32,
-        height: u32,
+        #[pyo3(from_py_with = args::width)] width: u32,
+        #[pyo3(from_py_with = args::height)] height: u32,
     ) -> PyResult<Py<PyAny>> {
         let np = py.import("numpy")?;
         let k = np.call_method1("ascontiguousarray", (K, "float64"))?;
@@ -269,12 +272,13 @@ impl PyCamera {
     /// The camera's rays for a `width` x `height` image, shape (H, W, 6), float64: origin then
     /// unit direction, row 0 at the top, as lanecast's camera makes them (the f64 direction
     /// tables); the layout of Open3D's `create_rays_pinhole` (whose directions are not unit).
+    /// The size as for `Scene.render`: both, or neither.
     #[pyo3(signature = (width = None, height = None))]
     fn rays<'py>(
         &self,
         py: Python<'py>,
-        width: Option<u32>,
-        height: Option<u32>,
+        #[pyo3(from_py_with = args::opt_width)] width: Option<u32>,
+        #[pyo3(from_py_with = args::opt_height)] height: Option<u32>,
     ) -> PyResult<Bound<'py, PyArray3<f64>>> {
         let cam = self.resolve(width, height)?;
         let (w, h) = (cam.width as usize, cam.height as usize);
@@ -326,6 +330,25 @@ impl PyCamera {
             fov_deg: Some(fov),
         };
         PyCamera::checked(spec, size)
+    }
+}
+
+/// An image size of a camera without its own: `width` and `height` together, or neither for
+/// 640x480 (the command line's default); one alone is refused rather than completed.
+pub(crate) fn both_or_neither(width: Option<u32>, height: Option<u32>) -> PyResult<(u32, u32)> {
+    match (width, height) {
+        (Some(w), Some(h)) => Ok((w, h)),
+        (None, None) => Ok((640, 480)),
+        (w, h) => {
+            let given = match (w, h) {
+                (Some(w), _) => format!("width={w}"),
+                (_, h) => format!("height={}", h.unwrap_or_default()),
+            };
+            Err(value_error(format!(
+                "width and height: give both, or neither for 640x480 (got {given} alone; the \
+                 camera's field of view is horizontal, so no height follows from a width)"
+            )))
+        }
     }
 }
 

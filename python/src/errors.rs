@@ -25,8 +25,22 @@ pub(crate) fn py_err(py: Python<'_>, e: lanecast::Error) -> PyErr {
         } => scene_error(file, Some(*line), Some(*col)),
         E::InputFile { file, .. } => scene_error(file, None, None),
         E::IoAt { file, line, .. } => scene_error(file, Some(*line), Some(0)),
-        E::Io { source, path, .. } => match source.raw_os_error() {
-            Some(code) => PyOSError::new_err((code, text, path.clone())),
+        // OSError(errno, strerror, filename), the filename a str as open()'s: Python's str()
+        // appends it, so the message is the library's without its path ("[Errno 2] cannot
+        // read scene: No such file or directory: 'x.sc'").
+        E::Io {
+            source,
+            path,
+            action,
+        } => match source.raw_os_error() {
+            Some(code) => {
+                let why = source.to_string();
+                let why = why
+                    .strip_suffix(&format!(" (os error {code})"))
+                    .unwrap_or(&why);
+                let why = format!("cannot {action}: {why}");
+                PyOSError::new_err((code, why, path.as_os_str().to_os_string()))
+            }
             None => PyOSError::new_err(text),
         },
         E::Usage(_) => PyValueError::new_err(text),

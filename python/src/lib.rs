@@ -8,6 +8,7 @@
 //! `Camera::look_at`, `Views`, `shade`. The GIL is released around every load, validation and
 //! render; `threads=` picks a rayon pool.
 
+mod args;
 mod arrays;
 mod camera;
 mod errors;
@@ -29,5 +30,7 @@ fn _lanecast(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Render>()?;
     m.add_function(wrap_pyfunction!(shade, m)?)?;
     m.add("INTRINSICS_TOL", INTRINSICS_TOL)?;
+    m.add("MAX_THREADS", lanecast::limits::MAX_THREADS)?;
+    m.add("MAX_SIDE", lanecast::limits::MAX_SIDE)?;
     Ok(())
 }

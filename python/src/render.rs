@@ -1,6 +1,7 @@
 //! Rendering and results: views rendered from a scene's prepared views into `lanecast.Render`
 //! (ids, depth, and on request z-depth and normals, as numpy arrays), and `shade`.
 
+use crate::args;
 use crate::errors::{py_err, scene_error_class, value_error};
 use crate::scene::Prepared;
 use crate::threads::run;
@@ -63,7 +64,7 @@ impl Render {
         py: Python<'py>,
         color_mode: &str,
         variation: &str,
-        seed: u64,
+        #[pyo3(from_py_with = args::seed)] seed: u64,
     ) -> PyResult<Bound<'py, PyAny>> {
         shade(
             py,
@@ -205,7 +206,7 @@ pub(crate) fn shade<'py>(
     depth: &Bound<'py, PyAny>,
     color_mode: &str,
     variation: &str,
-    seed: u64,
+    #[pyo3(from_py_with = args::seed)] seed: u64,
 ) -> PyResult<Bound<'py, PyAny>> {
     let mode = ColorMode::parse(color_mode).ok_or_else(|| {
         value_error(format!(

@@ -1,6 +1,7 @@
 //! Scenes: `lanecast.Scene`, loaded from a file or from arrays, with its prepared views (one
 //! per precision); renders and pickling delegate to `render` and `pickle`.
 
+use crate::args;
 use crate::arrays::{float_rows, index_rows};
 use crate::camera::{PyCamera, camera_arg, cameras_arg};
 use crate::errors::{py_err, value_error};
@@ -79,8 +80,10 @@ impl PyScene {
     /// Scene.load(path): a `.sc` scene (meshes included), or a `.obj` / `.ply` mesh alone
     /// seen by the command line's framing camera. Every rule of the command line applies;
     /// bad content raises lanecast.SceneError with file, line and column.
+    /// `path`: str, bytes or os.PathLike; a file that cannot be read raises OSError (errno and
+    /// filename set; FileNotFoundError when missing).
     #[staticmethod]
-    fn load(py: Python<'_>, path: PathBuf) -> PyResult<PyScene> {
+    fn load(py: Python<'_>, #[pyo3(from_py_with = args::path)] path: PathBuf) -> PyResult<PyScene> {
         let scene = run(py, None, || lanecast::load_scene(&path))?.map_err(|e| py_err(py, e))?;
         Ok(PyScene::new(scene))
     }
@@ -167,20 +170,22 @@ impl PyScene {
     /// zdepth=False, normals=False): one view, as a `Render` with `ids` (H, W) int32 (-1:
     /// background) and `depth` (H, W) float32 (distance along the unit ray, +inf: background),
     /// and when asked for, `zdepth` (distance along the optical axis) and `normals` (H, W, 3).
-    /// `camera` None is the scene's own; the size is the camera's (from intrinsics), else
-    /// 640x480. The ids and depth buffers
-    /// are the library's, moved into numpy without a copy. The GIL is released while the
-    /// view renders, on `threads` threads (None: all cores).
+    /// `camera` None is the scene's own. The size: `width` and `height` together, or neither
+    /// for the camera's own (from intrinsics; one of the two, if given, must agree with it),
+    /// else 640x480; one without the other is a ValueError, never a guessed size. The ids
+    /// and depth buffers are the library's, moved into numpy without a copy. The GIL is
+    /// released while the view renders, on `threads` threads (None: all cores). An integer
+    /// argument out of range (`threads=-1`, `width=0`) is a ValueError naming it.
     #[pyo3(signature = (camera = None, width = None, height = None, precision = "auto", threads = None, zdepth = false, normals = false))]
     #[allow(clippy::too_many_arguments)]
     fn render(
         &self,
         py: Python<'_>,
         camera: Option<&Bound<'_, PyAny>>,
-        width: Option<u32>,
-        height: Option<u32>,
+        #[pyo3(from_py_with = args::opt_width)] width: Option<u32>,
+        #[pyo3(from_py_with = args::opt_height)] height: Option<u32>,
         precision: &str,
-        threads: Option<usize>,
+        #[pyo3(from_py_with = args::threads)] threads: Option<usize>,
         zdepth: bool,
         normals: bool,
     ) -> PyResult<Render> {
@@ -192,7 +197,7 @@ impl PyScene {
     /// scene.render_views(cameras, width=None, height=None, precision="auto", threads=None,
     /// zdepth=False, normals=False): many views from the scene's prepared views, as one
     /// `Render` whose arrays are stacked (V, H, W), view v from cameras[v]; every camera must
-    /// give the same size.
+    /// give the same size (`width` and `height` as for `render`).
     /// Each view is rendered by the library into its recycled frame and copied into the
     /// stacked arrays. The GIL is released for the whole batch. Each view's setup fills the
     /// buffers of the view before; the scene keeps one view's buffers, per precision used,
@@ -203,20 +208,20 @@ impl PyScene {
         &self,
         py: Python<'_>,
         cameras: &Bound<'_, PyAny>,
-        width: Option<u32>,
-        height: Option<u32>,
+        #[pyo3(from_py_with = args::opt_width)] width: Option<u32>,
+        #[pyo3(from_py_with = args::opt_height)] height: Option<u32>,
         precision: &str,
-        threads: Option<usize>,
+        #[pyo3(from_py_with = args::threads)] threads: Option<usize>,
         zdepth: bool,
         normals: bool,
     ) -> PyResult<Render> {
         let cams = cameras_arg(cameras, width, height)?;
         let (w, h) = match cams.first() {
             Some(c) => (c.width as usize, c.height as usize),
-            None => (
-                width.unwrap_or(640) as usize,
-                height.unwrap_or(480) as usize,
-            ),
+            None => {
+                let (w, h) = crate::camera::both_or_neither(width, height)?;
+                (w as usize, h as usize)
+            }
         };
         let prepared = self.prepared(precision_index(precision)?)?;
         render::views(
