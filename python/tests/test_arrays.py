@@ -77,7 +77,8 @@ def test_any_integer_dtype_and_lists_are_accepted():
     (dict(vertices=V, quads=[[0, 1, 4, 2]]), r"^quads row 0: degenerate quad"),
     (dict(vertices=V, spheres=[[0, 0, 0, 1], [0, 0, 0, 0]]), r"^spheres row 1: sphere radius must be positive"),
     (dict(vertices=V, spheres=[[0, np.nan, 0, 1]]), r"^spheres row 0: .* is not finite"),
-    (dict(vertices=V, spheres=[[0, 0, 0, 1]], camera=None), r"^camera: none given"),
+    (dict(vertices=V, camera=None), r"^camera: none given, and the primitives have no extent"),
+    (dict(vertices=V, triangles=[[4, 4, 4]], camera=None), r"^camera: none given"),
     (dict(vertices=np.vstack([V, [[0, 0, -1e19]]]), spheres=[[0, 0, -1e19, 1]]), r"^spheres row 0: sphere reaches"),
 ])
 def test_bad_arrays_raise_value_error_naming_array_and_row(kwargs, message):
@@ -99,3 +100,40 @@ def test_a_scene_of_nothing_but_a_camera_renders_background():
     s = lanecast.Scene.from_arrays(camera=CAM)
     out = s.render(CAM, 8, 8)
     assert (out.ids == -1).all() and np.isinf(out.depth).all()
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(spheres=[[0, 0, 0, 0]]), r"^spheres row 0: sphere radius must be positive"),
+    (dict(spheres=[[0, 0, 0, -1]]), r"^spheres row 0: sphere radius must be positive"),
+    (dict(spheres=[[0, 0, 0, np.nan]]), r"^spheres row 0: .* is not finite"),
+    (dict(vertices=np.where(np.arange(15).reshape(5, 3) == 8, 0.5, V), quads=[[0, 1, 2, 3]]),
+     r"^quads row 0: quad is not planar"),
+    (dict(quads=[[0, 2, 1, 3]]), r"^quads row 0: quad is not convex"),
+    (dict(triangles=[[0, 1, 2]], spheres=[[0, 0, 0, 1], [0, 0, 0, -2]]),
+     r"^spheres row 1: sphere radius must be positive"),
+])
+def test_without_a_camera_a_bad_row_reports_its_own_error(kwargs, message):
+    # validation first, then framing: never "camera: none given" in place of the real error
+    kwargs.setdefault("vertices", V)
+    with pytest.raises(ValueError, match=message):
+        lanecast.Scene.from_arrays(**kwargs)
+
+
+def test_without_a_camera_spheres_and_quads_are_framed_too():
+    # a sphere alone: framed as the box around it, looking at its centre
+    s = lanecast.Scene.from_arrays(spheres=[[3, 2, 1, 0.5]])
+    assert s.camera.look == [3, 2, 1]
+    out = s.render(width=64, height=48)
+    assert (out.ids == 0).sum() > 100 and out.ids[24, 32] == 0
+    # a quad alone
+    q = lanecast.Scene.from_arrays(vertices=V + [10, 0, 0], quads=[[0, 1, 2, 3]])
+    assert q.camera.look == [10, 0, 0]
+    # a triangle and a sphere far from it: both in view, the camera at their middle
+    both = lanecast.Scene.from_arrays(vertices=V, triangles=[[0, 1, 2]],
+                                      spheres=[[10, 0, 0, 1]])
+    assert both.camera.look == [5, 0, 0]
+    ids = both.render(width=160, height=120).ids
+    assert (ids == 0).any() and (ids == 1).any()
+    # whole: nothing touches the image's border
+    border = np.concatenate([ids[0], ids[-1], ids[:, 0], ids[:, -1]])
+    assert (border == -1).all()
