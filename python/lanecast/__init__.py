@@ -6,6 +6,9 @@ quads and spheres, and get numpy arrays of primitive ids and depths.
     cams = [lanecast.Camera(eye=(0.3 * i, 0.2, 1), look=(0, 0.1, 0)) for i in range(8)]
     out = scene.render_views(cams, 640, 480)                 # out.ids, out.depth: (8, 480, 640)
 
+Type information: the package is typed (``py.typed``; the extension's stub is
+``_lanecast.pyi``). ``__version__`` is the package's version.
+
 The engine is the lanecast Rust library (the command line's): every view is bit-identical to
 ``lanecast -i SCENE --eye ... --look ... --up ... -fov ...``.
 """
@@ -13,9 +16,11 @@ The engine is the lanecast Rust library (the command line's): every view is bit-
 import copyreg as _copyreg
 
 from ._errors import SceneError
-from ._lanecast import INTRINSICS_TOL, Camera, Render, Scene, shade
+from ._lanecast import (INTRINSICS_TOL, MAX_SIDE, MAX_THREADS, Camera, Render, Scene,
+                        __version__, shade)
 
-__all__ = ["Camera", "Render", "Scene", "SceneError", "shade", "INTRINSICS_TOL"]
+__all__ = ["Camera", "Render", "Scene", "SceneError", "shade", "INTRINSICS_TOL", "MAX_SIDE",
+           "MAX_THREADS", "__version__"]
 
 
 def _scene_from_state(state):

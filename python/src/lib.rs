@@ -32,5 +32,6 @@ fn _lanecast(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("INTRINSICS_TOL", INTRINSICS_TOL)?;
     m.add("MAX_THREADS", lanecast::limits::MAX_THREADS)?;
     m.add("MAX_SIDE", lanecast::limits::MAX_SIDE)?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }
