@@ -3,9 +3,12 @@
     from distributed import Client, LocalCluster
     import lanecast, lanecast.dask
 
-    client = Client(LocalCluster(n_workers=2, threads_per_worker=1))  # or Client("tcp://host:8786")
-    scene = lanecast.Scene.load("scenes/bunny.sc")
-    summary = lanecast.dask.render_views(client, scene, cameras, "out", 1280, 720)
+    if __name__ == "__main__":  # the workers import a script: its work goes under this guard
+        scene = lanecast.Scene.load("scenes/bunny.sc")
+        with LocalCluster(n_workers=2, threads_per_worker=1) as cluster, Client(cluster) as client:
+            summary = lanecast.dask.render_views(client, scene, cameras, "out", 1280, 720)
+
+A complete script: python/examples/dask_views.py (README "Python").
 
 How it works:
 
@@ -35,6 +38,7 @@ import dataclasses
 import errno
 import hashlib
 import math
+import operator
 import os
 import pickle
 import shutil
@@ -152,6 +156,20 @@ def _render_chunk(payload, digest, views, out_dir, width, height, outputs, preci
     return done, skipped, failed
 
 
+def _int_arg(name: str, value, lo: int, hi: int):
+    """An integer argument (None passes) in ``lo..=hi``, as the extension checks its own: a
+    ValueError naming it when out of range, a TypeError when not an integer."""
+    if value is None:
+        return None
+    try:
+        v = operator.index(value)
+    except TypeError:
+        raise TypeError(f"{name}: expected an integer, not {type(value).__name__}") from None
+    if not lo <= v <= hi:
+        raise ValueError(f"{name}={v}: must be {lo} to {hi}")
+    return v
+
+
 def _remove_stale_temporaries(out_dir: str):
     for entry in os.listdir(out_dir):
         if entry.endswith(_TMP_SUFFIX) or entry.endswith(_TMP_SUFFIX + ".old"):
@@ -165,11 +183,17 @@ def render_views(client, scene, cameras, out_dir, width=None, height=None,
 
     ``scene``: a :class:`lanecast.Scene` (shipped by value) or a path every worker can read.
     ``cameras``: a sequence of :class:`lanecast.Camera`. ``outputs``: any of "ids", "depth",
-    "zdepth", "image". ``chunk_size``: views per task (default: about four tasks per worker
-    thread, at most 64 views each).
+    "zdepth", "image". ``width`` and ``height``: both, or neither (each camera's own size,
+    else 640x480), as for ``Scene.render``. ``chunk_size``: views per task (default: about
+    four tasks per worker thread, at most 64 views each). Bad arguments raise here, before any
+    task is sent.
     """
     import distributed
 
+    width = _int_arg("width", width, 1, lanecast.MAX_SIDE)
+    height = _int_arg("height", height, 1, lanecast.MAX_SIDE)
+    threads = _int_arg("threads", threads, 1, lanecast.MAX_THREADS)
+    chunk_size = _int_arg("chunk_size", chunk_size, 1, 2**63 - 1)
     outputs = tuple(outputs)
     bad = [o for o in outputs if o not in OUTPUTS]
     if bad or not outputs:
@@ -178,7 +202,12 @@ def render_views(client, scene, cameras, out_dir, width=None, height=None,
     for v, c in enumerate(cameras):
         if not isinstance(c, lanecast.Camera):
             raise ValueError(f"cameras[{v}]: expected a lanecast.Camera")
-    out_dir = os.path.abspath(os.fspath(out_dir))
+    if (width is None) != (height is None) and any(c.size is None for c in cameras):
+        given = f"width={width}" if height is None else f"height={height}"
+        raise ValueError(f"width and height: give both, or neither for 640x480 (got {given} "
+                         "alone; the camera's field of view is horizontal, so no height "
+                         "follows from a width)")
+    out_dir = os.path.abspath(os.fsdecode(out_dir))
     os.makedirs(out_dir, exist_ok=True)
     _remove_stale_temporaries(out_dir)
 
@@ -186,7 +215,7 @@ def render_views(client, scene, cameras, out_dir, width=None, height=None,
         digest = hashlib.sha256(pickle.dumps(scene, protocol=pickle.HIGHEST_PROTOCOL)).hexdigest()
         payload = ("scene", client.scatter(scene, broadcast=True, hash=False))
     else:
-        path = os.path.abspath(os.fspath(scene))
+        path = os.path.abspath(os.fsdecode(scene))
         st = os.stat(path)
         digest = hashlib.sha256(f"{path}\0{st.st_size}\0{st.st_mtime_ns}".encode()).hexdigest()
         payload = ("path", path)

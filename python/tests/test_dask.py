@@ -164,3 +164,25 @@ def test_a_job_killed_mid_run_then_a_rerun_gives_the_complete_set(client, tmp_pa
     got = load_all(tmp_path, n, ("ids", "depth"))
     ref = scene.render_views(cams, 320, 240)
     assert same_bits(got["ids"], ref.ids) and same_bits(got["depth"], ref.depth)
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(width=100), r"^width and height: give both"),
+    (dict(height=100), r"^width and height: give both"),
+    (dict(width=-1, height=10), r"^width=-1: must be 1 to"),
+    (dict(width=10, height=2**70), r"^height=1180591620717411303424: must be 1 to"),
+    (dict(threads=-1), r"^threads=-1: must be 1 to"),
+    (dict(chunk_size=0), r"^chunk_size=0: must be 1 to"),
+    (dict(chunk_size=-1), r"^chunk_size=-1: must be 1 to"),
+])
+def test_bad_arguments_are_refused_before_any_task(client, tmp_path, kwargs, message):
+    scene = lanecast.Scene.load(SCENES / "scene1.sc")
+    with pytest.raises(ValueError, match=message):
+        ldask.render_views(client, scene, orbit(2), tmp_path / "out", **kwargs)
+    assert not (tmp_path / "out").exists()
+
+
+def test_bytes_paths_are_paths(client, tmp_path):
+    out = os.fsencode(tmp_path / "out")
+    s = ldask.render_views(client, os.fsencode(SCENES / "scene1.sc"), orbit(2), out, 16, 12)
+    assert s.complete and s.done == [0, 1]
