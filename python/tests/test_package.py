@@ -1,6 +1,8 @@
-"""The package as a new user meets it: its version and types."""
+"""The package as a new user meets it: its version and types, README's commands (which
+python/ci.sh runs as written), and README's examples, run as files."""
 
 import importlib.metadata
+import os
 import pathlib
 import re
 import subprocess
@@ -10,6 +12,11 @@ import pytest
 
 import lanecast
 from conftest import REPO
+
+README = (REPO / "README.md").read_text()
+SECTION = README[README.index("\n## Python\n"):]
+SECTION = SECTION[:SECTION.index("\n## ", 1)]
+EXAMPLES = REPO / "python" / "examples"
 
 
 def test_version_is_the_installed_distributions():
@@ -25,6 +32,71 @@ def test_the_installed_package_is_typed_and_is_the_one_imported():
     stub = (pkg / "_lanecast.pyi").read_text()
     for name in ("class Scene", "class Camera", "class Render", "def shade", "__version__"):
         assert name in stub
+
+
+def _readme_commands():
+    # the indented block after the section's first paragraph: one command a line
+    block = re.search(r"\n\n((?:    \S.*\n)+)", SECTION).group(1)
+    return [line[4:].rstrip() for line in block.splitlines()]
+
+
+def test_readme_install_and_test_commands_are_what_ci_runs():
+    commands = _readme_commands()
+    assert commands[-2].startswith('pip install "./python[dask,test]"')
+    assert commands[-1] == "pytest python/tests"
+    ci = (REPO / "python" / "ci.sh").read_text().splitlines()
+    at = [ci.index(c) for c in commands]  # each line, exactly as written
+    assert at == sorted(at), "in README's order"
+
+
+def test_the_test_extra_installs_what_the_tests_and_ci_need():
+    req = importlib.metadata.requires("lanecast") or []
+    test = [r for r in req if re.search(r"extra == ['\"]test['\"]", r)]
+    assert any(r.startswith("pytest") for r in test) and any(r.startswith("mypy") for r in test)
+
+
+def _readme_examples():
+    blocks = re.findall(r"```python\n(.*?)```", SECTION, re.S)
+    named = {}
+    for b in blocks:
+        m = re.match(r"# python/examples/(\w+\.py):", b)
+        assert m, f"a README example that is not a file a test runs:\n{b}"
+        named[m.group(1)] = b
+    return named
+
+
+def test_readme_examples_are_the_example_files():
+    named = _readme_examples()
+    assert set(named) == {"views.py", "dask_views.py"}
+    for name, text in named.items():
+        assert (EXAMPLES / name).read_text() == text, name
+
+
+def _run_example(name, tmp_path):
+    # from a folder of its own that holds the scenes, as a user's copy of the repository would
+    (tmp_path / "scenes").symlink_to(REPO / "scenes")
+    return subprocess.run([sys.executable, str(EXAMPLES / name)], cwd=tmp_path,
+                          capture_output=True, text=True, timeout=300)
+
+
+def test_the_views_example_runs_as_written(tmp_path):
+    run = _run_example("views.py", tmp_path)
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.strip() == "(24, 360, 640) int32 float32"
+    size = (tmp_path / "views.npz").stat().st_size
+    assert size < 8 << 20, size
+
+
+def test_the_dask_example_runs_as_written_from_a_file(tmp_path):
+    pytest.importorskip("distributed")
+    run = _run_example("dask_views.py", tmp_path)
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.strip() == "24 views done, 0 skipped (already complete), 0 failed"
+    # nothing logged as an error at exit (a client left open), no task rendered twice over
+    assert "ERROR" not in run.stderr and "Traceback" not in run.stderr, run.stderr
+    views = sorted(os.listdir(tmp_path / "out"))
+    assert views == [f"view_{v:06d}" for v in range(24)]
+    assert not list(tmp_path.glob("*.npz"))
 
 
 def test_the_stub_matches_the_extension():
