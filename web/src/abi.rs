@@ -16,6 +16,8 @@
 //! - `lc_ids()`, `lc_depth()`: the last frame's ids (i32) and depths (f32), row-major.
 //! - `lc_shade(mode, variation, seed, hover, pinned)`: the last frame as RGBA, with the
 //!   primitives `hover` and `pinned` (-1: none) highlighted; returns its pointer.
+//! - `lc_npy(which)`, `lc_npy_len()`: the last frame's ids (0) or depths (1) as a `.npy`
+//!   file, the command line's `--ids` / `--depth` bytes.
 //! - `lc_pick(x, y)`: the id at pixel (x, y) of the last frame, with id, type, scene line,
 //!   mesh face, depth and hit point as JSON in the message.
 //! - `lc_message()`, `lc_message_len()`: the last message (UTF-8).
@@ -200,6 +202,19 @@ pub extern "C" fn lc_shade(
         0
     };
     with(|s| s.shade(mode, variation, seed, hover, pinned).as_ptr())
+}
+
+/// The last frame's ids (`which` 0) or depths (1) as a `.npy` file, as the command line's
+/// `--ids` and `--depth` write them; its length is [`lc_npy_len`]. Valid until the next call.
+#[unsafe(no_mangle)]
+pub extern "C" fn lc_npy(which: u32) -> *const u8 {
+    with(|s| s.npy(which == 1).as_ptr())
+}
+
+/// The length in bytes of the `.npy` file [`lc_npy`] last made (0: no frame).
+#[unsafe(no_mangle)]
+pub extern "C" fn lc_npy_len() -> usize {
+    with(|s| s.npy_len())
 }
 
 /// The id at pixel (x, y) of the last frame (-1: background or outside), with the pick as

@@ -16,7 +16,7 @@ mod state;
 
 pub use abi::{
     lc_alloc, lc_depth, lc_file_add, lc_files_clear, lc_free, lc_ids, lc_load, lc_message,
-    lc_message_len, lc_pick, lc_render, lc_shade,
+    lc_message_len, lc_npy, lc_npy_len, lc_pick, lc_render, lc_shade,
 };
 pub use report::{Pick, scene_json};
 pub use state::{Loaded, State};

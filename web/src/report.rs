@@ -33,7 +33,8 @@ impl Pick {
     }
 }
 
-/// A scene's summary, as JSON: its name, camera, primitive counts and warnings.
+/// A scene's summary, as JSON: its name, camera, the box around its primitives (`bounds`:
+/// min and max corners), primitive counts and warnings.
 pub fn scene_json(loaded: &Loaded) -> String {
     let s = loaded.scene();
     let c = s.camera;
@@ -46,12 +47,14 @@ pub fn scene_json(loaded: &Loaded) -> String {
         let _ = write!(warnings, "{sep}{}", json_string(w));
     }
     format!(
-        "{{\"source\":{},\"camera\":{{\"eye\":{},\"look\":{},\"up\":{},\"fov\":{fov}}},\"default_fov\":{},\"primitives\":{},\"spheres\":{spheres},\"triangles\":{triangles},\"quads\":{quads},\"warnings\":[{warnings}]}}",
+        "{{\"source\":{},\"camera\":{{\"eye\":{},\"look\":{},\"up\":{},\"fov\":{fov}}},\"default_fov\":{},\"bounds\":[{},{}],\"primitives\":{},\"spheres\":{spheres},\"triangles\":{triangles},\"quads\":{quads},\"warnings\":[{warnings}]}}",
         json_string(&s.source.to_string_lossy()),
         v(c.eye),
         v(c.look),
         v(c.up),
         lanecast::DEFAULT_FOV,
+        v(loaded.bounds()[0]),
+        v(loaded.bounds()[1]),
         s.shapes.len(),
     )
 }

@@ -2,6 +2,7 @@
 //! `mesh` lines may name, with loading, rendering through [`Views`], shading and picking.
 
 use crate::report::Pick;
+use glam::DVec3;
 use lanecast::scene::{Shape, parse_mesh_bytes, parse_scene_with};
 use lanecast::{Camera, CameraSpec, ColorMode, Frame, Options, Scene, Variation, Views};
 use std::collections::HashMap;
@@ -24,6 +25,8 @@ pub struct Loaded {
     prepared: Prepared,
     /// For each scene line holding a `mesh` (0 for a bare mesh), the id of its first face.
     mesh_first: HashMap<usize, usize>,
+    /// The box around every primitive (min, max), for the page to keep its camera near it.
+    bounds: [DVec3; 2],
 }
 
 impl std::fmt::Debug for Loaded {
@@ -45,12 +48,19 @@ impl Loaded {
                 }
             }
         }
+        let bounds = bounds(&scene);
         let prepared = Prepared::try_new(scene, |s| Views::new(s, &Options::default()))
             .map_err(|e| e.to_string())?;
         Ok(Loaded {
             prepared,
             mesh_first,
+            bounds,
         })
+    }
+
+    /// The box around every primitive: (min, max) corners.
+    pub fn bounds(&self) -> [DVec3; 2] {
+        self.bounds
     }
 
     /// The parsed scene.
@@ -75,6 +85,7 @@ pub struct State {
     /// The last frame rendered, and the camera it was rendered from.
     pub frame: Option<(Frame<f32>, Camera)>,
     rgba: Vec<u8>,
+    npy: Vec<u8>,
     pub(crate) message: String,
 }
 
@@ -114,6 +125,9 @@ impl State {
         spec: Option<CameraSpec>,
     ) -> Result<&Frame<f32>, String> {
         let loaded = self.loaded.as_ref().ok_or("no scene loaded")?;
+        let own = &loaded.scene().camera;
+        // a camera of the caller's (the page's orbit, pan and zoom), not the scene's line
+        let theirs = spec.filter(|s| (s.eye, s.look, s.up) != (own.eye, own.look, own.up));
         let camera = match spec {
             Some(spec) => Camera::look_at(&spec, width, height),
             None => Camera::for_scene(loaded.scene(), width, height, None),
@@ -123,7 +137,19 @@ impl State {
         if let Some((spare, _)) = self.frame.take() {
             views.recycle(spare);
         }
-        let frame = views.render(&camera).map_err(|e| e.to_string())?;
+        let frame = views.render(&camera).map_err(|e| match (&theirs, e) {
+            // the scene's file is not at fault (it loaded): the caller's view is, so the
+            // message names the camera and not a scene line
+            (Some(c), lanecast::Error::Input { msg, .. }) => {
+                let v = |v: DVec3| format!("{} {} {}", v.x, v.y, v.z);
+                format!(
+                    "this view cannot be rendered (camera eye {} look {}): {msg}",
+                    v(c.eye),
+                    v(c.look)
+                )
+            }
+            (_, e) => e.to_string(),
+        })?;
         Ok(&self.frame.insert((frame, camera)).0)
     }
 
@@ -147,12 +173,28 @@ impl State {
         for (o, i) in self.rgba.chunks_exact_mut(4).zip(rgb.chunks_exact(3)) {
             o[..3].copy_from_slice(i);
         }
-        for (id, tint) in [(hover, [255u16, 255, 255]), (pinned, [255, 220, 0])] {
+        for (id, tint) in [(hover, [255u8, 255, 255]), (pinned, [255, 220, 0])] {
             if id >= 0 {
                 highlight(&mut self.rgba, &frame.ids, w, h, id, tint);
             }
         }
         &self.rgba
+    }
+
+    /// The last frame's ids (`depth` false) or depths as a `.npy` file, byte for byte the
+    /// command line's `--ids` or `--depth` file; empty before a frame.
+    pub fn npy(&mut self, depth: bool) -> &[u8] {
+        self.npy = match &self.frame {
+            Some((f, _)) if depth => lanecast::output::npy_f32(f.width, f.height, &f.depth),
+            Some((f, _)) => lanecast::output::npy_i32(f.width, f.height, &f.ids),
+            None => Vec::new(),
+        };
+        &self.npy
+    }
+
+    /// The length of the `.npy` file [`State::npy`] last made.
+    pub fn npy_len(&self) -> usize {
+        self.npy.len()
     }
 
     /// What lies under pixel (x, y) of the last frame: `None` outside the frame or on the
@@ -190,13 +232,47 @@ impl State {
     }
 }
 
-/// Brightens primitive `id`'s pixels toward `tint` and draws its outline in `tint`.
-fn highlight(rgba: &mut [u8], ids: &[i32], w: usize, h: usize, id: i32, tint: [u16; 3]) {
+/// The box around every primitive of `scene` (a sphere by its centre and radius): (min, max).
+fn bounds(scene: &Scene) -> [DVec3; 2] {
+    let mut lo = DVec3::splat(f64::INFINITY);
+    let mut hi = DVec3::splat(f64::NEG_INFINITY);
+    let mut add = |p: DVec3, r: f64| {
+        lo = lo.min(p - r);
+        hi = hi.max(p + r);
+    };
+    if scene.shapes.is_empty() {
+        return [scene.camera.look; 2];
+    }
+    for shape in scene.shapes.iter() {
+        match shape {
+            Shape::Sphere { center, radius } => add(center, radius),
+            Shape::Triangle(v) => v.into_iter().for_each(|p| add(p, 0.0)),
+            Shape::Quad(v) => v.into_iter().for_each(|p| add(p, 0.0)),
+        }
+    }
+    [lo, hi]
+}
+
+/// How far (in pixels, as a disk) the ring drawn around a highlighted primitive reaches.
+pub const RING: i32 = 3;
+
+/// Marks primitive `id` so that it stands out at any density, even where it covers a pixel or
+/// two of a dense mesh: its pixels mixed two thirds toward `tint`, and a ring around them
+/// `RING` pixels wide (disk-shaped), `tint` nearest the primitive and black outside it, so it
+/// shows on light and dark neighbours alike.
+fn highlight(rgba: &mut [u8], ids: &[i32], w: usize, h: usize, id: i32, tint: [u8; 3]) {
+    // the ring: every pixel within RING of one of the primitive's edge pixels, not its own
+    let mut ring: Vec<(usize, u8)> = Vec::new();
+    let r2 = RING * RING;
     for y in 0..h {
         for x in 0..w {
             let at = y * w + x;
             if ids[at] != id {
                 continue;
+            }
+            let p = &mut rgba[at * 4..at * 4 + 3];
+            for (c, t) in p.iter_mut().zip(tint) {
+                *c = ((*c as u16 + 2 * t as u16) / 3) as u8;
             }
             let edge = x == 0
                 || y == 0
@@ -206,15 +282,31 @@ fn highlight(rgba: &mut [u8], ids: &[i32], w: usize, h: usize, id: i32, tint: [u
                 || ids[at + 1] != id
                 || ids[at - w] != id
                 || ids[at + w] != id;
-            let p = &mut rgba[at * 4..at * 4 + 3];
-            for (c, t) in p.iter_mut().zip(tint) {
-                *c = if edge {
-                    t as u8
-                } else {
-                    ((*c as u16 * 2 + t) / 3) as u8
-                };
+            if !edge {
+                continue;
+            }
+            for dy in -RING..=RING {
+                for dx in -RING..=RING {
+                    let d2 = dx * dx + dy * dy;
+                    let (nx, ny) = (x as i64 + dx as i64, y as i64 + dy as i64);
+                    if d2 > r2 || nx < 0 || ny < 0 || nx >= w as i64 || ny >= h as i64 {
+                        continue;
+                    }
+                    let n = ny as usize * w + nx as usize;
+                    if ids[n] != id {
+                        // 0: tint (within two thirds of the ring), 1: black
+                        ring.push((n, u8::from(d2 * 9 > r2 * 4)));
+                    }
+                }
             }
         }
+    }
+    // tint wins over black where the two overlap
+    ring.sort_unstable();
+    ring.dedup_by_key(|(n, _)| *n);
+    for (n, outer) in ring {
+        let colour = if outer == 1 { [0, 0, 0] } else { tint };
+        rgba[n * 4..n * 4 + 3].copy_from_slice(&colour);
     }
 }
 
@@ -315,5 +407,74 @@ mod tests {
         assert_ne!(plain[at..at + 3], lit[at..at + 3]);
         assert_eq!(plain[..4], lit[..4]); // background untouched
         assert!(scene_json(s.loaded.as_ref().unwrap()).contains("\"primitives\":1"));
+    }
+
+    /// A face of the bunny that covers two pixels or fewer at 160x120 still changes dozens when
+    /// pinned: its pixels and the ring around them (a 1-pixel outline changed two).
+    #[test]
+    fn a_pinned_face_of_a_dense_mesh_stands_out() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+        let obj = std::fs::read(root.join("scenes/meshes/bunny.obj")).unwrap();
+        let mut s = State::default();
+        s.load("bunny.obj", &obj).unwrap();
+        let (w, h) = (160, 120);
+        let ids = s.render(w, h, None).unwrap().ids.clone();
+        let mut count = HashMap::new();
+        for &i in ids.iter().filter(|&&i| i >= 0) {
+            *count.entry(i).or_insert(0usize) += 1;
+        }
+        let (&small, _) = count.iter().filter(|(_, n)| **n <= 2).min().unwrap();
+        let plain = s
+            .shade(ColorMode::Random, Variation::Linear, 0, -1, -1)
+            .to_vec();
+        let lit = s
+            .shade(ColorMode::Random, Variation::Linear, 0, -1, small)
+            .to_vec();
+        let changed: Vec<usize> = (0..ids.len())
+            .filter(|&k| plain[4 * k..4 * k + 3] != lit[4 * k..4 * k + 3])
+            .collect();
+        assert!(
+            changed.len() >= 20,
+            "face {small}: {} pixels changed",
+            changed.len()
+        );
+        // all of them near the face: within the ring
+        let own: Vec<usize> = (0..ids.len()).filter(|&k| ids[k] == small).collect();
+        for k in changed {
+            let near = own.iter().any(|&o| {
+                let (dx, dy) = (
+                    (k % 160) as i32 - (o % 160) as i32,
+                    (k / 160) as i32 - (o / 160) as i32,
+                );
+                dx * dx + dy * dy <= RING * RING
+            });
+            assert!(near, "pixel {k} changed, away from face {small}");
+        }
+        // the ring is both light (the pin's yellow) and dark: it shows on any neighbour
+        let colours: Vec<&[u8]> = lit.chunks_exact(4).map(|p| &p[..3]).collect();
+        assert!(colours.contains(&&[255u8, 220, 0][..]) && colours.contains(&&[0u8, 0, 0][..]));
+    }
+
+    /// A view the page moved to (zoomed far out) that the engine refuses names the camera, not
+    /// the scene's line: the scene's file is not at fault. From the scene's own camera a
+    /// refusal keeps the command line's FILE:LINE:COL.
+    #[test]
+    fn a_refused_view_from_the_callers_camera_blames_the_camera() {
+        let mut s = State::default();
+        s.load(
+            "far.sc",
+            b"camera eye 0 0 10 look 0 0 0 up 0 1 0\ntriangle 0 0 0 1 0 0 0 1 0\n",
+        )
+        .unwrap();
+        let own = s.loaded.as_ref().unwrap().scene().camera;
+        assert!(s.render(16, 16, Some(own)).is_ok());
+        let far = CameraSpec {
+            eye: glam::DVec3::new(0.0, 0.0, 1e25),
+            ..own
+        };
+        let e = s.render(16, 16, Some(far)).unwrap_err();
+        assert!(!e.starts_with("far.sc"), "{e}");
+        assert!(e.starts_with("this view cannot be rendered (camera eye 0 0 10000000000000000000000000 look 0 0 0): "), "{e}");
+        assert!(scene_json(s.loaded.as_ref().unwrap()).contains("\"bounds\":[[0,0,0],[1,1,0]]"));
     }
 }
