@@ -1,6 +1,6 @@
-//! The accuracy lab: `cargo bench --bench lab` runs every intersection method on the stress
-//! scenes and the seed scenes against the f64 oracle and writes docs/lab/ (chart, table, error
-//! images). Arguments after `--` go to `lanecast_lab::lab_main` (`--only SCENE`,
+//! The accuracy lab: `cargo bench -p lanecast-lab --bench lab` runs every intersection method
+//! on the stress scenes and the seed scenes against the f64 oracle and writes docs/lab/ (chart,
+//! table, error images). Arguments after `--` go to `lanecast_lab::lab_main` (`--only SCENE`,
 //! `--method NAME`, `--out DIR`).
 //!
 //! `cargo bench` passes `--bench`; `cargo test --all-targets` runs this target without it, and
@@ -9,7 +9,9 @@
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     if !args.iter().any(|a| a == "--bench") {
-        eprintln!("lab: not run (no --bench: start it with `cargo bench --bench lab`)");
+        eprintln!(
+            "lab: not run (no --bench: start it with `cargo bench -p lanecast-lab --bench lab`)"
+        );
         return;
     }
     if let Err(e) = lanecast_lab::lab_main(args) {

@@ -1,7 +1,7 @@
 //! The accuracy lab: every intersection method (`lanecast::experimental::kernel::methods`, plus the
 //! defaults) on the stress scenes (`scenes/stress/`) and the seed scenes, measured against the
 //! f64 scalar oracle, with throughput on one thread; writes a chart, a table and error images
-//! to `docs/lab/`. Run it with `cargo bench --bench lab` (see [`lab_main`]).
+//! to `docs/lab/`. Run it with `cargo bench -p lanecast-lab --bench lab` (see [`lab_main`]).
 //!
 //! The lab is its own crate on top of lanecast: it uses the library's public API (scenes,
 //! cameras, the methods' brute-force drivers, `compare`'s mismatch classes) and nothing in
