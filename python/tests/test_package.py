@@ -84,7 +84,7 @@ def test_the_views_example_runs_as_written(tmp_path):
     assert run.returncode == 0, run.stderr
     assert run.stdout.strip() == "(24, 360, 640) int32 float32"
     size = (tmp_path / "views.npz").stat().st_size
-    assert size < 8 << 20, size
+    assert size < 16 << 20, size  # compressed: 7 MB, against 44 MB as .npy
 
 
 def test_the_dask_example_runs_as_written_from_a_file(tmp_path):

@@ -21,8 +21,8 @@ comparison).";
 #[command(
     name = "lanecast",
     version,
-    about = "Ray-casts a .sc scene (camera, spheres, triangles, quads) to an image: \
-             8-wide SIMD packets, with a scalar f64 oracle.",
+    about = "Ray-casts a .sc scene (camera, spheres, triangles, quads, OBJ and PLY meshes), or \
+             an OBJ or PLY mesh alone, to an image: 8-wide SIMD packets, with a scalar f64 oracle.",
     after_help = EXAMPLES,
     subcommand_negates_reqs = true,
     args_conflicts_with_subcommands = true

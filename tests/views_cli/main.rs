@@ -37,6 +37,7 @@ fn read(p: &Path) -> Vec<u8> {
     fs::read(p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
 }
 
+mod ffmpeg;
 mod refusals;
 mod resume;
 
