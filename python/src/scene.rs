@@ -90,9 +90,10 @@ impl PyScene {
 
     /// Scene.from_arrays(vertices=(N, 3), triangles=(M, 3), quads=(Q, 4), spheres=(K, 4),
     /// camera=None): triangles and quads index `vertices` (any integer dtype); spheres are
-    /// rows of centre and radius. Ids: triangles first, then quads, then spheres. Without a
-    /// camera, the triangles are framed as `lanecast mesh.obj` frames a mesh. Bad arrays raise
-    /// ValueError naming the array and row.
+    /// rows of centre and radius. Ids: triangles first, then quads, then spheres. Every row is
+    /// validated first; then, without a camera, every primitive (triangles, quads, spheres) is
+    /// framed as `lanecast -i mesh.obj` frames a mesh. Bad arrays raise ValueError naming the
+    /// array and row.
     #[staticmethod]
     #[pyo3(signature = (vertices = None, triangles = None, quads = None, spheres = None, camera = None, name = "<arrays>"))]
     fn from_arrays(
