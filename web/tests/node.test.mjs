@@ -188,10 +188,18 @@ test('shade follows -cm, -cv and --seed and highlights the hovered primitive', (
   assert.notDeepEqual(a, c);
   const id = ids.find((i) => i >= 0);
   const lit = lc.shade({ mode: 'random', seed: 1, hover: id }).slice();
+  // its pixels, and a ring 3 pixels wide around them: nothing farther changes
+  const own = [];
+  ids.forEach((i, k) => { if (i === id) own.push([k % 160, Math.floor(k / 160)]); });
+  let ring = 0;
   for (let k = 0; k < ids.length; k++) {
     const same = [0, 1, 2, 3].every((j) => lit[4 * k + j] === a[4 * k + j]);
-    if (ids[k] !== id) assert.ok(same, `pixel ${k} (id ${ids[k]}) changed`);
+    if (ids[k] === id || same) continue;
+    const [x, y] = [k % 160, Math.floor(k / 160)];
+    assert.ok(own.some(([u, v]) => (u - x) ** 2 + (v - y) ** 2 <= 9), `pixel ${k} (id ${ids[k]}) changed`);
+    ring++;
   }
+  assert.ok(ring > 0, 'no ring around the hovered primitive');
   assert.notDeepEqual(lit, a);
   // the command line's PNG of the same frame, same colours
   const png = path.join(tmp, 's.png');
@@ -222,4 +230,17 @@ test('bad files: the command line\'s FILE:LINE:COL message, and the previous sce
   }
   assert.deepEqual(lc.render(null, 64, 48).ids.slice(), before);
   assert.equal(lc.scene.source, 'scenes/scene3.sc');
+});
+
+test('npy gives the frame\'s ids and depths as the command line\'s --ids and --depth files, byte for byte', () => {
+  for (const scene of ['scenes/scene1.sc', 'scenes/bunny.sc']) {
+    const { bytes, meshes } = files(scene);
+    lc.load(scene, bytes, meshes);
+    lc.render(null, 97, 61);
+    const ids = path.join(tmp, 'n-ids.npy');
+    const depth = path.join(tmp, 'n-depth.npy');
+    execFileSync(bin, ['-i', scene, '-size', '97x61', '-o', path.join(tmp, 'n.png'), '--ids', ids, '--depth', depth], { cwd: root });
+    assert.ok(Buffer.from(lc.npy('ids')).equals(fs.readFileSync(ids)), `${scene}: ids .npy differs`);
+    assert.ok(Buffer.from(lc.npy('depth')).equals(fs.readFileSync(depth)), `${scene}: depth .npy differs`);
+  }
 });

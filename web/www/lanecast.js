@@ -7,6 +7,7 @@
 //   lc.load('scene1.sc', text);                        // throws Error('FILE:LINE:COL: ...')
 //   const f = lc.render(null, 1280, 720);              // {ids, depth, rgba, width, height, ms}
 //   lc.pick(640, 360);                                 // {id, type, line, face, depth, point}
+//   lc.npy('ids');                                     // the frame's --ids file (or 'depth')
 //
 // The arrays render() and shade() return are views of the module's memory: valid until the
 // next call into the module (copy them with .slice() to keep them).
@@ -132,6 +133,15 @@ export class Lanecast {
   shade({ mode = 'random', variation = 'linear', seed = 0, hover = -1, pinned = -1 } = {}) {
     const p = this.x.lc_shade(MODES[mode] ?? 0, VARIATIONS[variation] ?? 0, Number(seed), hover, pinned);
     return new Uint8ClampedArray(this.memory, p, this.width * this.height * 4);
+  }
+
+  /**
+   * The last frame's ids ('ids') or depths ('depth') as a `.npy` file: a copy of the bytes
+   * the command line's --ids or --depth writes for the same frame.
+   */
+  npy(which) {
+    const p = this.x.lc_npy(which === 'depth' ? 1 : 0);
+    return new Uint8Array(this.memory, p, this.x.lc_npy_len()).slice();
   }
 
   /**
