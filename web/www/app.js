@@ -1,6 +1,9 @@
-// The page: a canvas the size of the window, rendered by lanecast.wasm from the scene loaded
-// once, re-rendered from the new camera on every orbit, pan, zoom or control change.
+// The page: a canvas filling what the panel leaves of the window, at device pixels, rendered by
+// lanecast.wasm from the scene loaded once, re-rendered from the new camera on every orbit,
+// pan, zoom or control change. The camera rules (zoom limits, framing, the URL's camera, the
+// fps figure) are in view.js.
 import { init, cameraLine } from './lanecast.js';
+import { FrameTimes, cameraParam, clampCamera, download, fitFov, parseCameraParam, zoom } from './view.js';
 
 const $ = (id) => document.getElementById(id);
 const canvas = $('view');
@@ -9,22 +12,27 @@ const ui = {
   scene: $('scene'), file: $('file'), fov: $('fov'), fovval: $('fovval'), mode: $('mode'),
   variation: $('variation'), seed: $('seed'), png: $('png'), copycam: $('copycam'),
   camline: $('camline'), stats: $('stats'), hover: $('hover'), pinned: $('pinned'),
-  error: $('error'), drop: $('drop'),
+  error: $('error'), drop: $('drop'), res: $('res'), idsnpy: $('idsnpy'), depthnpy: $('depthnpy'),
+  source: $('source'), hide: $('hide'), show: $('show'), panel: $('panel'),
 };
 
 const lc = await init(fetch('lanecast.wasm'));
 const app = {
   lc,
-  camera: null, // {eye, look, up, fov}
+  camera: null, // {eye, look, up, fov}: fov as framed for a 4:3 frame (view.js fitFov)
+  view: null, // the camera the last frame was rendered from (fov fitted to the canvas)
   home: null, // the scene's own camera
+  bounds: null, // the box around the scene's primitives, [min, max]
+  good: null, // the last camera that rendered
   hover: -1,
   pinned: -1,
   dirty: true, // re-render
   reshade: false, // shade again only (hover, colours)
   frames: 0, // frames drawn (for tests and the benchmark)
   last: { frameMs: 0, renderMs: 0 },
-  fpsEma: 0,
+  times: new FrameTimes(30), // the fps figure: median of the recent frames
   sceneName: '',
+  menuName: '', // the bundled scene on show, '' for an opened file
 };
 window.lanecastApp = app;
 
@@ -48,13 +56,22 @@ function showError(msg) {
   ui.error.hidden = !msg;
 }
 
-function setScene(name, bytes, files) {
+function setScene(name, bytes, files, menuName = '') {
   const scene = lc.load(name, bytes, files); // throws the CLI's message; the old scene stays
   const c = scene.camera;
   app.home = { eye: c.eye, look: c.look, up: c.up, fov: c.fov ?? scene.default_fov };
   app.camera = structuredClone(app.home);
+  app.good = null;
+  app.bounds = scene.bounds;
   app.sceneName = name;
-  app.fpsEma = 0;
+  app.menuName = menuName;
+  ui.source.textContent = menuName ? `scene: ${name}` : `opened: ${name}`;
+  opened.hidden = !!menuName;
+  if (!menuName) {
+    opened.textContent = `${name} (opened)`;
+    ui.scene.value = '';
+  }
+  app.times.reset();
   app.pinned = -1;
   app.hover = -1;
   ui.pinned.textContent = '';
@@ -76,7 +93,8 @@ async function openMenu(entry) {
   try {
     const files = {};
     for (const m of entry.meshes) files[m] = await fetchBytes(`scenes/${m}`);
-    setScene(entry.file, await fetchBytes(`scenes/${entry.file}`), files);
+    setScene(entry.file, await fetchBytes(`scenes/${entry.file}`), files, entry.name);
+    ui.scene.value = entry.name;
   } catch (e) {
     showError(e.message);
   }
@@ -94,14 +112,15 @@ async function openFiles(list) {
   for (const f of files) if (f !== scene) others[f.name] = new Uint8Array(await f.arrayBuffer());
   try {
     setScene(scene.name, new Uint8Array(await scene.arrayBuffer()), others);
-    ui.scene.value = '';
   } catch (e) {
     showError(e.message);
   }
 }
 
 const menu = await (await fetch('scenes/menu.json')).json();
-ui.scene.append(new Option('(opened file)', ''));
+const opened = new Option('', ''); // the opened file, by its name
+opened.hidden = true;
+ui.scene.append(opened);
 for (const m of menu) ui.scene.append(new Option(m.name, m.name));
 ui.scene.onchange = () => {
   const m = menu.find((e) => e.name === ui.scene.value);
@@ -130,15 +149,22 @@ ui.fov.oninput = () => {
   app.dirty = true;
 };
 for (const el of [ui.mode, ui.variation, ui.seed]) el.oninput = () => { app.reshade = true; };
-ui.png.onclick = () => {
-  canvas.toBlob((blob) => {
-    const a = document.createElement('a');
-    a.href = URL.createObjectURL(blob);
-    a.download = `${app.sceneName.replace(/\.[^.]*$/, '') || 'lanecast'}.png`;
-    a.click();
-    setTimeout(() => URL.revokeObjectURL(a.href), 1000);
-  }, 'image/png');
-};
+ui.res.oninput = () => resize();
+const stem = () => app.sceneName.replace(/^.*\//, '').replace(/\.[^.]*$/, '') || 'lanecast';
+ui.png.onclick = () => canvas.toBlob((blob) => download(`${stem()}.png`, blob), 'image/png');
+// the frame's buffers, as the command line's --ids and --depth write them
+ui.idsnpy.onclick = () => download(`${stem()}-ids.npy`, lc.npy('ids'));
+ui.depthnpy.onclick = () => download(`${stem()}-depth.npy`, lc.npy('depth'));
+
+// the panel: hidden and shown by H, or by its buttons (a click or a tap)
+function setPanel(open) {
+  ui.panel.hidden = !open;
+  ui.show.hidden = open;
+  document.body.classList.toggle('collapsed', !open);
+  resize();
+}
+ui.hide.onclick = () => setPanel(false);
+ui.show.onclick = () => setPanel(true);
 ui.copycam.onclick = async () => {
   ui.camline.select();
   try {
@@ -181,14 +207,14 @@ canvas.addEventListener('pointerup', (e) => {
 });
 canvas.addEventListener('wheel', (e) => {
   e.preventDefault();
-  const c = app.camera;
   const k = Math.exp(Math.max(-1, Math.min(1, e.deltaY * 0.001)));
-  c.eye = add(c.look, mul(sub(c.eye, c.look), k));
+  // no nearer than where the look point is still resolved, no farther than the scene framed
+  app.camera = zoom(app.camera, k, app.home, app.bounds);
   app.dirty = true;
 }, { passive: false });
 window.addEventListener('keydown', (e) => {
   if (e.target instanceof HTMLInputElement || e.target instanceof HTMLSelectElement) return;
-  if (e.key === 'h' || e.key === 'H') $('panel').hidden = !$('panel').hidden;
+  if (e.key === 'h' || e.key === 'H') setPanel(ui.panel.hidden);
   if (e.key === 'r' || e.key === 'R') {
     app.camera = structuredClone(app.home);
     syncFov();
@@ -222,10 +248,12 @@ function pan(dx, dy) {
   const fwd = sub(c.look, c.eye);
   const right = norm(cross(fwd, c.up));
   const camUp = norm(cross(right, fwd));
-  const perPixel = (2 * len(fwd) * Math.tan((c.fov * Math.PI) / 360)) / canvas.width;
+  // dx, dy in CSS pixels; the frame spans the fitted fov across the canvas's CSS width
+  const fov = fitFov(c.fov, canvas.width, canvas.height);
+  const perPixel = (2 * len(fwd) * Math.tan((fov * Math.PI) / 360)) / canvas.clientWidth;
   const move = add(mul(right, -dx * perPixel), mul(camUp, dy * perPixel));
-  c.eye = add(c.eye, move);
-  c.look = add(c.look, move);
+  // the look point stays near the scene
+  app.camera = clampCamera({ ...c, eye: add(c.eye, move), look: add(c.look, move) }, app.home, app.bounds);
   app.dirty = true;
 }
 
@@ -258,17 +286,21 @@ function pin(x, y) {
 }
 
 // ---- the frame loop -------------------------------------------------------------------------
+// The canvas at device pixels (a DPR 2 screen gets twice the CSS size each way), or a half or
+// quarter of them when the resolution control asks for speed.
 function resize() {
-  const w = Math.max(1, Math.round(canvas.clientWidth));
-  const h = Math.max(1, Math.round(canvas.clientHeight));
+  const k = (window.devicePixelRatio || 1) * Number(ui.res.value || 1);
+  const w = Math.max(1, Math.round(canvas.clientWidth * k));
+  const h = Math.max(1, Math.round(canvas.clientHeight * k));
   if (w !== canvas.width || h !== canvas.height) {
     canvas.width = w;
     canvas.height = h;
-    app.fpsEma = 0;
+    app.times.reset();
     app.dirty = true;
   }
 }
 new ResizeObserver(resize).observe(canvas);
+window.addEventListener('resize', resize); // a zoom of the page changes the device pixel ratio
 
 function shading() {
   return {
@@ -287,23 +319,33 @@ function frame() {
   let rgba;
   if (app.dirty) {
     let f;
+    // the scene's framing kept at any window shape: a wide canvas gets the fov that shows the
+    // height a 4:3 frame shows
+    const view = { ...app.camera, fov: fitFov(app.camera.fov, w, h) };
     try {
-      f = lc.render(null, w, h, app.camera, shading());
+      f = lc.render(null, w, h, view, shading());
     } catch (e) {
-      // a view the engine refuses (an eye out of f32 range, a triangle too thin to resolve
-      // from it): the message, and the last frame stays until a view renders again
+      // a view the engine refuses (which the zoom and pan limits should leave none of): its
+      // message, which names the camera and not the scene, and back to the last camera that
+      // rendered
       showError(e.message);
-      app.viewError = true;
-      app.dirty = false;
+      app.viewError = 2; // shown until a view after the restored one renders
+      if (app.good && app.camera !== app.good) {
+        app.camera = structuredClone(app.good);
+        syncFov();
+      } else {
+        app.dirty = false;
+      }
       return false;
     }
-    if (app.viewError) {
-      showError('');
-      app.viewError = false;
-    }
+    if (app.viewError && !--app.viewError) showError('');
+    app.good = structuredClone(app.camera);
+    app.view = view;
     renderMs = f.ms;
     rgba = f.rgba;
-    ui.camline.value = cameraLine(app.camera);
+    ui.camline.value = cameraLine(view);
+    fitCamline();
+    shareView();
   } else {
     rgba = lc.shade(shading());
   }
@@ -315,25 +357,69 @@ function frame() {
   app.frames++;
   if (rendered) {
     app.last = { frameMs, renderMs };
-    app.fpsEma = app.fpsEma ? 0.9 * app.fpsEma + 0.1 * (1000 / frameMs) : 1000 / frameMs;
+    app.times.add(frameMs); // the first frame of a scene or size is left out
     const rays = (w * h) / (frameMs / 1000);
+    const fps = app.times.fps();
+    const n = app.times.times.length;
     ui.stats.textContent =
       `${w}x${h}  frame ${frameMs.toFixed(1)} ms (render ${renderMs.toFixed(1)})\n` +
-      `${(rays / 1e6).toFixed(1)} Mrays/s  ${app.fpsEma.toFixed(0)} fps  ${lc.scene.primitives} primitives`;
+      `${(rays / 1e6).toFixed(1)} Mrays/s  ` +
+      (n ? `${fps.toFixed(0)} fps (median of ${n})` : 'fps –') +
+      `  ${lc.scene.primitives} primitives`;
   }
   return true;
 }
 app.frame = frame;
+
+/** The camera line's field grows to show the whole line. */
+function fitCamline() {
+  ui.camline.style.height = 'auto';
+  ui.camline.style.height = `${ui.camline.scrollHeight + 2}px`;
+}
+
+// The view in the URL (?scene=NAME&cam=eye,look,up,fov), to share it or reload it; a file
+// opened from disk cannot be named there, so its views leave the URL bare.
+let shareTimer = 0;
+function shareView() {
+  if (shareTimer) return;
+  shareTimer = setTimeout(() => {
+    shareTimer = 0;
+    const q = new URLSearchParams();
+    if (app.menuName) {
+      q.set('scene', app.menuName);
+      q.set('cam', cameraParam(app.camera));
+    }
+    const url = `${location.pathname}${q.size ? `?${q}` : ''}`;
+    if (url !== `${location.pathname}${location.search}`) history.replaceState(null, '', url);
+  }, 150);
+}
 
 function loop() {
   frame();
   requestAnimationFrame(loop);
 }
 
-// the first menu entry, or ?scene=NAME
-const wanted = new URLSearchParams(location.search).get('scene');
-const first = menu.find((m) => m.name === wanted) ?? menu[0];
-ui.scene.value = first.name;
-await openMenu(first);
+// ?scene=NAME (else the first menu entry) and ?cam=eye,look,up,fov (else the scene's camera);
+// what cannot be had is said, and the first scene or the scene's camera shown instead
+const params = new URLSearchParams(location.search);
+const wanted = params.get('scene');
+const first = wanted == null ? menu[0] : menu.find((m) => m.name === wanted);
+await openMenu(first ?? menu[0]);
+const notes = [];
+if (!first) {
+  notes.push(`?scene=${wanted}: no such scene (the bundled ones: ${menu.map((m) => m.name).join(', ')}); showing ${menu[0].name}`);
+}
+if (params.has('cam')) {
+  const cam = parseCameraParam(params.get('cam'));
+  if (!cam) notes.push(`?cam=${params.get('cam')}: not a camera (ten numbers: eye, look, up, fov); showing the scene's own`);
+  else if (first) {
+    app.camera = cam;
+    syncFov();
+  }
+}
+if (notes.length) {
+  ui.error.classList.remove('warn');
+  showError(notes.join('\n'));
+}
 app.ready = true;
 requestAnimationFrame(loop);
