@@ -39,9 +39,14 @@ const browser = await chromium.launch({
   headless: true,
   args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run', '--disable-background-networking', '--disable-component-update', '--disable-sync'],
 });
-const page = await browser.newPage({ viewport: { width: W, height: H }, deviceScaleFactor: 1 });
+const page = await browser.newPage({ viewport: { width: W + 300, height: H }, deviceScaleFactor: 1 });
 await page.goto(`http://127.0.0.1:${server.address().port}/`);
 await page.waitForFunction(() => window.lanecastApp?.ready);
+// the canvas, beside the panel (300 pixels), W x H
+await page.waitForFunction(([w, h]) => {
+  const c = document.getElementById('view');
+  return c.width === w && c.height === h;
+}, [W, H]);
 const menu = JSON.parse(fs.readFileSync(path.join(dist, 'scenes', 'menu.json'), 'utf8'));
 
 /**
