@@ -534,6 +534,13 @@ test('at a device pixel ratio of 2 the canvas renders at device pixels; a tap hi
     assert.deepEqual([cw, ch], [400, 300]);
     assert.ok(sameIds(await pageIds(p), native('scenes/bunny.sc', await fovFlag(p), [w, h])), 'ids differ from --ids');
     await p.screenshot({ path: path.join(shots, 'bunny-dpr2.png') });
+    // the cursor's CSS pixel picks the device pixels under it
+    const [hx, hy] = [200, 150];
+    await p.mouse.move(...(await at(hx, hy, p)));
+    await p.evaluate(() => window.lanecastApp.frame());
+    const under = await p.evaluate(([x, y]) => window.lanecastApp.lc.ids()[y * document.getElementById('view').width + x], [2 * hx, 2 * hy]);
+    assert.ok(under >= 0, 'the cursor is on the bunny');
+    assert.equal(await p.evaluate(() => window.lanecastApp.hover), under);
     // the resolution control: half the device pixels
     await p.selectOption('#res', '0.5');
     await p.waitForFunction(() => window.lanecastApp.lc.width === 400 && !window.lanecastApp.dirty);
@@ -542,6 +549,12 @@ test('at a device pixel ratio of 2 the canvas renders at device pixels; a tap hi
     await p.waitForFunction(() => document.getElementById('view').width === 1400);
     await p.tap('#show');
     await p.waitForFunction(() => document.getElementById('view').width === 800);
+    // a phone held upright: the panel above the canvas, the canvas the rest
+    await p.setViewportSize({ width: 390, height: 700 });
+    await p.waitForFunction(() => document.getElementById('view').width === 780 && !window.lanecastApp.dirty);
+    const [panel, view] = await p.evaluate(() => ['panel', 'view'].map((id) => document.getElementById(id).getBoundingClientRect().toJSON()));
+    assert.ok(panel.bottom <= view.top + 0.5 && view.bottom <= 700.5 && view.height > 300, `${JSON.stringify(panel)} ${JSON.stringify(view)}`);
+    await p.screenshot({ path: path.join(shots, 'bunny-phone.png') });
   } finally {
     await ctx.close();
   }
