@@ -2,6 +2,7 @@
 built module by mypy's stubtest in python/ci.sh."""
 
 import os
+import pathlib
 from collections.abc import Iterable
 from typing import Any, Literal, SupportsIndex, Union, final
 
@@ -71,7 +72,7 @@ class Scene:
                     spheres: npt.ArrayLike | None = None,
                     camera: Camera | None = None, name: str = "<arrays>") -> Scene: ...
     @property
-    def source(self) -> str: ...
+    def source(self) -> pathlib.Path: ...
     @property
     def warnings(self) -> list[str]: ...
     @property

@@ -104,3 +104,44 @@ def test_the_stub_matches_the_extension():
     run = subprocess.run([sys.executable, "-m", "mypy.stubtest", "lanecast._lanecast"],
                          capture_output=True, text=True, timeout=300)
     assert run.returncode == 0, run.stdout + run.stderr
+
+
+TYPED_PROGRAM = """
+import pathlib
+import numpy as np
+import numpy.typing as npt
+import lanecast
+
+s: lanecast.Scene = lanecast.Scene.load(SCENE)
+source: pathlib.Path = s.source
+warnings: list[str] = s.warnings
+counts: tuple[int, int, int] = s.counts
+cam: lanecast.Camera = s.camera
+eye: list[float] = cam.eye
+fov: float = cam.fov
+out: lanecast.Render = s.render(cam, 8, 6, threads=1)
+ids: npt.NDArray[np.int32] = out.ids
+depth: npt.NDArray[np.float32] = out.depth
+image: npt.NDArray[np.uint8] = out.image(seed=3)
+version: str = lanecast.__version__
+for name, value, kind in [("source", source, pathlib.Path), ("warnings", warnings, list),
+                          ("counts", counts, tuple), ("eye", eye, list), ("fov", fov, float),
+                          ("version", version, str)]:
+    assert isinstance(value, kind), (name, type(value))
+assert ids.dtype == np.dtype(np.int32) and depth.dtype == np.dtype(np.float32)
+assert image.dtype == np.dtype(np.uint8)
+"""
+
+
+def test_the_stubs_types_are_the_runtimes(tmp_path):
+    # stubtest checks names and signatures; this program's annotations are the types a
+    # caller relies on: mypy accepts them against the stub, and the asserts hold at runtime
+    pytest.importorskip("mypy")
+    from conftest import SCENES
+    program = tmp_path / "typed.py"
+    program.write_text(f"SCENE = {str(SCENES / 'scene1.sc')!r}\n" + TYPED_PROGRAM)
+    run = subprocess.run([sys.executable, str(program)], capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    run = subprocess.run([sys.executable, "-m", "mypy", "--strict", str(program)],
+                         capture_output=True, text=True, timeout=300, cwd=tmp_path)
+    assert run.returncode == 0, run.stdout + run.stderr
