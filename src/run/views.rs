@@ -118,7 +118,7 @@ fn cameras(
                     ..l.camera
                 };
                 crate::Camera::look_at(&spec, w, h)
-                    .map_err(|e| Error::input(file, l.line, 0, e.to_string()))
+                    .map_err(|e| Error::input(file, l.line, l.col, e.to_string()))
             })
             .collect(),
         ViewSource::Orbit(n) => {
@@ -291,7 +291,9 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
 /// An error of view `k`, naming its line in the views file (or its place in the orbit).
 fn in_view(source: &ViewSource, lines: &[ViewLine], k: usize, e: Error) -> Error {
     match source {
-        ViewSource::File(f) => Error::input(f, lines[k].line, 0, format!("view {k}: {e}")),
+        ViewSource::File(f) => {
+            Error::input(f, lines[k].line, lines[k].col, format!("view {k}: {e}"))
+        }
         ViewSource::Orbit(n) => Error::usage(format!("--orbit {n}: view {k}: {e}")),
     }
 }

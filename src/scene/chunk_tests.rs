@@ -242,11 +242,11 @@ fn the_first_error_in_file_order_wins_with_its_global_line() {
         ),
         (
             format!("\n\ncamera eye 1\n{CAM}"),
-            "s.sc:3: too few numbers: camera 'eye' expects 3, got 1",
+            "s.sc:3:1: too few numbers: camera 'eye' expects 3, got 1",
         ),
         (
             format!("{CAM}sphere 1 1 1 1\r\nsphere 1 1 1\r\nsphere 1 1 1 1 1\r\n"),
-            "s.sc:3: too few",
+            "s.sc:3:1: too few",
         ),
         (
             format!("{CAM}sphere 0 0 0 1\nmesh\n"),
@@ -258,7 +258,7 @@ fn the_first_error_in_file_order_wins_with_its_global_line() {
         ),
         (
             format!("{CAM}\n\nsphere {}\nbad\n", "1 ".repeat(3000)),
-            "s.sc:4: line is 6007 bytes",
+            "s.sc:4:1: line is 6007 bytes",
         ),
         ("sphere 0 0 0 1\n".to_string(), "s.sc: no camera line"),
     ] {
@@ -291,7 +291,7 @@ fn the_primitive_limit_holds_across_chunks() {
     let spheres = "sphere 0 0 0 1\n".repeat(12);
     let got = scene_agrees(format!("{CAM}{spheres}").as_bytes(), 5);
     assert!(
-        got.starts_with("error: s.sc:7: too many primitives: a scene holds at most 5"),
+        got.starts_with("error: s.sc:7:1: too many primitives: a scene holds at most 5"),
         "{got}"
     );
     // a bad primitive line past the limit reports the limit; one before it, itself
@@ -300,7 +300,7 @@ fn the_primitive_limit_holds_across_chunks() {
         5,
     );
     assert!(
-        got.starts_with("error: s.sc:7: too many primitives"),
+        got.starts_with("error: s.sc:7:1: too many primitives"),
         "{got}"
     );
     let got = scene_agrees(
@@ -341,7 +341,7 @@ fn meshes_splice_in_at_their_line_in_any_chunking() {
             .unwrap_err()
             .to_string();
         assert!(
-            e.ends_with("s.sc:5: too many primitives: a scene holds at most 5"),
+            e.ends_with("s.sc:5:1: too many primitives: a scene holds at most 5"),
             "{e}"
         );
         let e = parse_bytes(text.as_bytes(), &sc, 3, chunk)

@@ -12,7 +12,9 @@
 //! ```
 //!
 //! Exactly one camera line, anywhere; any number of primitives. Errors point at
-//! `FILE:LINE:COL`, the column counted in characters (after the BOM), 0 for the whole line.
+//! `FILE:LINE:COL`, the column counted in characters (after the BOM): the offending token's,
+//! or for an error about a statement as a whole (too few numbers, a geometric rule, a limit)
+//! its first token's.
 //!
 //! # In parallel, with the answers of a sequential reader
 //!
@@ -41,7 +43,7 @@ use super::chunks::{self, Budget};
 use super::memory::MeshFiles;
 use super::scene_chunk::{ChunkOut, Event, StopKind, parse_chunk, second_camera};
 use super::shapes::{Mesh, Part, Shapes};
-use super::statement::CAMERA_SYNTAX;
+use super::statement::{CAMERA_SYNTAX, first_token_col};
 use super::{CameraSpec, Scene, mesh};
 use crate::error::{Error, Result};
 use crate::limits::{MAX_PRIMITIVES, MAX_SCENE_BYTES};
@@ -204,7 +206,7 @@ pub(super) fn parse_bytes_meshes(
         return Err(utf8_error(file, bytes, bom + bad));
     }
     let outs: Vec<ChunkOut> = outs.into_iter().flatten().collect();
-    let line = match join(outs, file, max_primitives, files, meshes) {
+    let line = match join(outs, body, file, max_primitives, files, meshes) {
         Ok(scene) => return Ok(scene),
         Err(Halt::Error(e)) => return Err(e),
         Err(Halt::Rerun) => {
@@ -224,7 +226,7 @@ pub(super) fn parse_bytes_meshes(
                 .last()
                 .and_then(|o| o.stop.as_ref())
                 .map_or(0, |s| s.line);
-            match join(outs, file, max_primitives, files, meshes) {
+            match join(outs, body, file, max_primitives, files, meshes) {
                 Ok(scene) => return Ok(scene),
                 Err(Halt::Error(e)) => return Err(e),
                 // In order, the budget runs out only past the limit, which `join` finds first.
@@ -232,12 +234,17 @@ pub(super) fn parse_bytes_meshes(
             }
         }
     };
-    Err(too_many_primitives(file, line, max_primitives))
+    Err(too_many_primitives(file, body, line, max_primitives))
 }
 
-fn too_many_primitives(file: &Path, line: usize, max: usize) -> Error {
+/// The primitive limit, reached on `line` of `body` (the file past its BOM): at the column of
+/// the line's first token, as every error about a statement as a whole.
+fn too_many_primitives(file: &Path, body: &[u8], line: usize, max: usize) -> Error {
     let msg = format!("too many primitives: a scene holds at most {max}");
-    Error::input(file, line, 0, msg)
+    let col = chunks::lines(body)
+        .nth(line.saturating_sub(1))
+        .map_or(0, |r| first_token_col(&String::from_utf8_lossy(&body[r])));
+    Error::input(file, line, col, msg)
 }
 
 /// Why `join` gives no scene.
@@ -264,6 +271,7 @@ enum Piece {
 /// Every mesh file read is recorded in `meshes` (which starts empty: a rerun reads them again).
 fn join(
     mut outs: Vec<ChunkOut>,
+    body: &[u8],
     file: &Path,
     max: usize,
     files: MeshFiles,
@@ -282,7 +290,7 @@ fn join(
             let range = done..at;
             if *total + range.len() > max {
                 let line = out.line(range.start + (max - *total));
-                return Err(too_many_primitives(file, line, max));
+                return Err(too_many_primitives(file, body, line, max));
             }
             *total += range.len();
             done = at;
@@ -303,10 +311,16 @@ fn join(
                     }
                     camera = Some((spec, line));
                 }
-                Event::Mesh { line, at, path } => {
+                Event::Mesh {
+                    line,
+                    col,
+                    at,
+                    path,
+                } => {
                     place(at, &mut total, &mut pieces)?;
                     let path = file.parent().map_or_else(|| path.into(), |d| d.join(path));
-                    let mesh = load_mesh(file, line, &path, max - total, files, &mut warnings)?;
+                    let at = (line, col);
+                    let mesh = load_mesh(file, at, &path, max - total, files, &mut warnings)?;
                     meshes.push(path);
                     total += mesh.len();
                     pieces.push(Piece::Mesh(mesh, line));
@@ -320,7 +334,7 @@ fn join(
         place(stop.at, &mut total, &mut pieces)?;
         return Err(match stop.kind {
             StopKind::Primitive(_) if total >= max => {
-                too_many_primitives(file, stop.line, max).into()
+                too_many_primitives(file, body, stop.line, max).into()
             }
             StopKind::Camera { col, .. } if camera.is_some() => {
                 let first = camera.map_or(0, |(_, l)| l);
@@ -439,10 +453,12 @@ pub fn framing_camera_of(points: impl IntoIterator<Item = DVec3>) -> Option<Came
     })
 }
 
-/// The triangles of the mesh named on `line`, with room for `room` of them.
+/// The triangles of the mesh named on `line` (its path at column `col`), with room for `room`
+/// of them. A file that yields no triangle at all (a `.sc` file, a text file, an OBJ of `v`
+/// lines alone) is refused there: it would add nothing, silently.
 fn load_mesh(
     file: &Path,
-    line: usize,
+    (line, col): (usize, usize),
     path: &Path,
     room: usize,
     files: MeshFiles,
@@ -460,6 +476,21 @@ fn load_mesh(
         },
         other => other,
     })?;
+    if mesh.is_empty() {
+        let what = match mesh::MeshFormat::of(path) {
+            Some(mesh::MeshFormat::Ply) => "a PLY file with a face element",
+            _ => "a Wavefront OBJ file with `f` lines, or a .ply file",
+        };
+        return Err(Error::input(
+            file,
+            line,
+            col,
+            format!(
+                "mesh {}: the file holds no triangles (a mesh must be {what})",
+                path.display()
+            ),
+        ));
+    }
     if degenerate > 0 {
         warnings.push(format!(
             "{}:{line}: mesh {}: {} kept (never hit)",
@@ -482,6 +513,6 @@ mod tests {
         assert_eq!(parse_with_limit(text, f, 2).unwrap().shapes.len(), 2);
         let more = format!("{text}triangle 0 0 0 1 0 0 0 1 0\n");
         let e = parse_with_limit(&more, f, 2).unwrap_err().to_string();
-        assert!(e.starts_with("s.sc:6: too many primitives"), "{e}");
+        assert!(e.starts_with("s.sc:6:1: too many primitives"), "{e}");
     }
 }

@@ -10,6 +10,7 @@ use super::{Scene, Shape};
 use crate::error::Error;
 use crate::limits::{MAX_EYE_DISTANCE, MIN_EDGE_ANGLE, MIN_RADIUS};
 use glam::DVec3;
+use std::path::Path;
 
 /// Scene-level check that the f32 kernels can represent every primitive seen from this eye.
 ///
@@ -48,9 +49,44 @@ pub(crate) fn outcome(scene: &Scene, first: Option<(usize, String)>) -> Result<(
             file: scene.source.clone(),
             msg: format!("face {}: {msg}", i + 1),
         }),
-        Some((i, msg)) => Err(Error::input(&scene.source, scene.shapes.line(i), 0, msg)),
+        Some((i, msg)) => {
+            let line = scene.shapes.line(i);
+            // a radius too small is the radius's fault (its column, as the parser names a
+            // radius of 0); a primitive too far, the statement's
+            let token = match scene.shapes.get(i) {
+                Shape::Sphere { radius, .. } if radius < MIN_RADIUS => 4,
+                _ => 0,
+            };
+            let col = token_col(&scene.source, line, token);
+            Err(Error::input(&scene.source, line, col, msg))
+        }
         None => Ok(()),
     }
+}
+
+/// The column of token `token` (0: the first) on `line` of the scene file `source`, where
+/// an error about a primitive points: as the parser does, a number's own column, or the first
+/// token's for the primitive as a whole (`statement::Ctx::whole`). The scene keeps lines, not
+/// columns, so the line is read again: an error's cost only. 0 (no column) where the file
+/// cannot be read again (standard input).
+fn token_col(source: &Path, line: usize, token: usize) -> usize {
+    if source == Path::new(super::parse::STDIN_NAME) {
+        return 0;
+    }
+    let Ok(bytes) = std::fs::read(source) else {
+        return 0;
+    };
+    let body = bytes.strip_prefix("\u{feff}".as_bytes()).unwrap_or(&bytes);
+    let Some(r) = super::chunks::lines(body).nth(line.saturating_sub(1)) else {
+        return 0;
+    };
+    let text = String::from_utf8_lossy(&body[r]);
+    let content = text.find('#').map_or(&*text, |k| &text[..k]);
+    let mut toks = Vec::new();
+    super::statement::tokenize(content, &mut toks);
+    toks.get(token)
+        .or(toks.first())
+        .map_or(0, |t| text[..t.off].chars().count() + 1)
 }
 
 /// [`f32_range`]'s rules for one shape.

@@ -11,7 +11,7 @@ use super::CameraSpec;
 use super::Shape;
 use super::chunks::{self, Budget, Chunk};
 use super::statement::{
-    Ctx, KEYWORDS, Tok, fast_shape, parse_camera, parse_shape, quote, tokenize,
+    Ctx, KEYWORDS, Tok, fast_shape, first_token_col, parse_camera, parse_shape, quote, tokenize,
 };
 use crate::error::Error;
 use crate::limits::MAX_LINE_BYTES;
@@ -43,6 +43,8 @@ pub enum Event<'a> {
     },
     Mesh {
         line: usize,
+        /// 1-based column of the path.
+        col: usize,
         at: usize,
         path: &'a str,
     },
@@ -149,7 +151,8 @@ pub fn parse_chunk<'a>(
         let shape = if line.len() > MAX_LINE_BYTES {
             let n = line.len();
             let msg = format!("line is {n} bytes long; the limit is {MAX_LINE_BYTES}");
-            Err(StopKind::Error(Error::input(file, line_no, 0, msg)))
+            let col = first_token_col(line);
+            Err(StopKind::Error(Error::input(file, line_no, col, msg)))
         } else if let Some(s) = fast_shape(line.as_bytes()) {
             Ok(Some(s))
         } else {
@@ -222,6 +225,7 @@ fn general_line<'a>(
             }
             out.events.push(Event::Mesh {
                 line: ctx.line,
+                col: ctx.col(&toks[1]),
                 at,
                 path,
             });

@@ -48,6 +48,12 @@ pub fn tokenize<'a>(s: &'a str, out: &mut Vec<Tok<'a>>) {
     }
 }
 
+/// The 1-based character column of the first token of `line` (past leading spaces and tabs;
+/// 1 for a blank line).
+pub fn first_token_col(line: &str) -> usize {
+    line.chars().take_while(|&c| c == ' ' || c == '\t').count() + 1
+}
+
 /// Where errors on the current line point.
 pub struct Ctx<'a> {
     pub file: &'a Path,
@@ -66,9 +72,11 @@ impl Ctx<'_> {
         Error::input(self.file, self.line, self.col(t), msg)
     }
 
-    /// An error about the whole line (column 0).
+    /// An error about the statement as a whole (too few numbers, a shape or camera breaking a
+    /// geometric rule), at the column of its first token: README "Scene format", every
+    /// message has a column.
     pub fn whole(&self, msg: impl Into<String>) -> Error {
-        Error::input(self.file, self.line, 0, msg)
+        Error::input(self.file, self.line, first_token_col(self.text), msg)
     }
 
     /// A token as a finite decimal number.

@@ -22,6 +22,9 @@ pub struct ViewLine {
     pub camera: CameraSpec,
     /// Its line in the file.
     pub line: usize,
+    /// The 1-based column of its first token (`camera`), where errors about the view as a
+    /// whole point.
+    pub col: usize,
 }
 
 /// Reads and parses the views file at `path` (at most `limits::MAX_SCENE_BYTES`, text).
@@ -84,6 +87,7 @@ pub fn parse_views(text: &str, file: &Path) -> Result<Vec<ViewLine>> {
         views.push(ViewLine {
             camera: parse_camera(&ctx, &toks)?,
             line: i + 1,
+            col: ctx.col(first),
         });
     }
     if views.is_empty() {

@@ -1,3 +1,3 @@
-# expect: 3 (edges cross)
+# expect: 3:1 (edges cross)
 camera eye 0 0 5 look 0 0 0 up 0 1 0
 quad 0 0 0  1 0 0  0 1 0  1 1 0

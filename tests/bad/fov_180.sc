@@ -1,3 +1,3 @@
-# expect: 2 (fov 180)
+# expect: 2:42 (fov 180)
 camera eye 0 0 5 look 0 0 0 up 0 1 0 fov 180
 sphere 0 0 0 1

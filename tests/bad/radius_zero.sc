@@ -1,3 +1,3 @@
-# expect: 3 (radius 0)
+# expect: 3:14 (radius 0)
 camera eye 0 0 5 look 0 0 0 up 0 1 0
 sphere 0 0 0 0

@@ -3,15 +3,16 @@
 use super::*;
 use crate::npy::KNOWN;
 
-/// The line a fixture's error must name, from its `# expect: LINE (why)` header
-/// (see tests/bad/README.md); `None` for whole-file errors.
-fn fixture_line(text: &str) -> Option<usize> {
+/// The `LINE:COL` a fixture's error must name, from its `# expect: LINE:COL (why)` header
+/// (see tests/bad/README.md); `None` for whole-file errors (`-`).
+fn fixture_line(text: &str) -> Option<String> {
     let spec = text
         .lines()
         .next()
         .and_then(|l| l.strip_prefix("# expect: "))
         .expect("fixture header");
-    spec.split_whitespace().next().unwrap().parse().ok()
+    let at = spec.split_whitespace().next().unwrap();
+    (at != "-").then(|| at.to_string())
 }
 
 /// Asserts a rejected run: exit `code`, a `lanecast: error:` message containing
@@ -58,7 +59,7 @@ fn bad_scenes_are_rejected_naming_file_and_line_and_write_nothing() {
         let text = fs::read_to_string(&src).unwrap();
         dir.write("bad.sc", &text);
         let at = match fixture_line(&text) {
-            Some(line) => format!("lanecast: error: bad.sc:{line}:"),
+            Some(line_col) => format!("lanecast: error: bad.sc:{line_col}: "),
             None => "lanecast: error: bad.sc: ".to_string(),
         };
         let o = run(

@@ -59,26 +59,29 @@ fn render_outputs(input: &Path, [png, ids, depth]: [&Path; 3], extra: &[&str]) -
 }
 
 /// Files in tests/bad/ whose first line cannot carry an `# expect:` comment.
-const NO_HEADER: [(&str, Option<usize>); 1] = [("empty.sc", None)];
+const NO_HEADER: [(&str, Option<(usize, usize)>); 1] = [("empty.sc", None)];
 
-/// The expected line of a fixture: from `# expect: N` (`-`: whole-file error, no line).
-fn expected_line(path: &Path) -> Option<usize> {
+/// The expected line and column of a fixture: from `# expect: LINE:COL` (`-`: whole-file
+/// error, no line).
+fn expected_at(path: &Path) -> Option<(usize, usize)> {
     let name = path.file_name().unwrap().to_str().unwrap();
-    if let Some((_, line)) = NO_HEADER.iter().find(|(n, _)| *n == name) {
-        return *line;
+    if let Some((_, at)) = NO_HEADER.iter().find(|(n, _)| *n == name) {
+        return *at;
     }
     let bytes = fs::read(path).unwrap();
     let first = bytes.split(|&b| b == b'\n').next().unwrap();
     let first = std::str::from_utf8(first).unwrap();
     let spec = first
         .strip_prefix("# expect: ")
-        .unwrap_or_else(|| panic!("{name}: first line must be `# expect: LINE (why)`"));
+        .unwrap_or_else(|| panic!("{name}: first line must be `# expect: LINE:COL (why)`"));
     let word = spec.split_whitespace().next().unwrap();
     if word == "-" {
-        None
-    } else {
-        Some(word.parse().unwrap())
+        return None;
     }
+    let (line, col) = word
+        .split_once(':')
+        .unwrap_or_else(|| panic!("{name}: `# expect: LINE:COL (why)`, got {word:?}"));
+    Some((line.parse().unwrap(), col.parse().unwrap()))
 }
 
 /// Asserts a rejected run: exit 2, one `lanecast: error: ` message naming the file and the

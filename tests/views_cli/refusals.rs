@@ -25,7 +25,7 @@ fn bad_views_and_patterns_are_refused_before_anything_is_written() {
         (&["--views", "bad.txt", "-o", "f%d.png"], "bad.txt:3:16:"),
         (
             &["--views", "parallel.txt", "-o", "f%d.png"],
-            "parallel.txt:2:",
+            "parallel.txt:2:1:",
         ),
         (
             &["--views", "shape.txt", "-o", "f%d.png"],
@@ -138,7 +138,7 @@ fn a_view_out_of_range_is_refused_before_anything_renders() {
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     let e = stderr(&o);
     assert!(
-        e.contains("v.txt:2: view 1:") && e.contains("scene6.sc:"),
+        e.contains("v.txt:2:1: view 1:") && e.contains("scene6.sc:15:1:"),
         "{e}"
     );
     assert_eq!(dir.entries(), ["v.txt"]);
