@@ -33,11 +33,15 @@ use image::codecs::png::{CompressionType, FilterType, PngEncoder};
 
 use crate::{Error, Result};
 
+#[cfg(feature = "cli")]
+mod complete;
 mod lock;
 mod npy;
 mod pattern;
 mod set;
 mod stale;
+#[cfg(feature = "cli")]
+pub(crate) use complete::{Expected, is_complete};
 use lock::lock_wait;
 use npy::npy_fill;
 pub use npy::{npy_f32, npy_i32, write_npy_f32, write_npy_i32};

@@ -102,10 +102,17 @@ impl Stats {
         (self.width * self.height) as f64 / self.render_best().max(1e-12)
     }
 
-    /// The fraction of the image's pixels re-decided in f64 (`None` unless `auto` ran).
+    /// The images [`Stats::redecided`] counts the pixels of: every rendered view of a
+    /// many-view run, else the one image (of the last repeat).
+    pub fn images(&self) -> usize {
+        self.views.as_ref().map_or(1, |v| v.each.len())
+    }
+
+    /// The fraction of the rendered pixels re-decided in f64, over every rendered view of a
+    /// many-view run (`None` unless `auto` ran).
     pub fn redecided_fraction(&self) -> Option<f64> {
-        self.redecided
-            .map(|n| n as f64 / (self.width * self.height).max(1) as f64)
+        let pixels = self.width * self.height * self.images();
+        self.redecided.map(|n| n as f64 / pixels.max(1) as f64)
     }
 
     /// The precision and SIMD width that ran: rays one at a time for the scalar kernels, f64x4
@@ -152,7 +159,16 @@ impl Stats {
         }
         let total: f64 = self.phases.iter().map(|p| p.1).sum();
         let _ = writeln!(out, "  {:<7} {:>10.3} ms", "total", total * 1e3);
-        if let Some(v) = &self.views {
+        if let Some(v) = &self.views
+            && v.each.is_empty()
+        {
+            let _ = writeln!(
+                out,
+                "  no view rendered: all {} skipped (--skip-existing found their outputs \
+                 complete)",
+                v.skipped
+            );
+        } else if let Some(v) = &self.views {
             let costs = v.costs();
             let _ = writeln!(
                 out,
@@ -174,15 +190,21 @@ impl Stats {
                 self.render_median() * 1e3
             );
         }
-        let _ = writeln!(
-            out,
-            "  {:.2} Mrays/s (render phase)",
-            self.rays_per_s() / 1e6
-        );
-        if let (Some(n), Some(f)) = (self.redecided, self.redecided_fraction()) {
+        if !self.renders.is_empty() {
             let _ = writeln!(
                 out,
-                "  re-decided in f64: {} ({:.4}% of the image)",
+                "  {:.2} Mrays/s (render phase)",
+                self.rays_per_s() / 1e6
+            );
+        }
+        if let (Some(n), Some(f)) = (self.redecided, self.redecided_fraction()) {
+            let of = match self.images() {
+                1 if self.views.is_none() => "the image".to_string(),
+                k => format!("{} pixels", count(k, "view's", "views'")),
+            };
+            let _ = writeln!(
+                out,
+                "  re-decided in f64: {} ({:.4}% of {of})",
                 count(n, "pixel", "pixels"),
                 f * 100.0
             );

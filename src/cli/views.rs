@@ -48,7 +48,7 @@ pub fn default_output(input: &Path) -> Result<PathBuf> {
 }
 
 /// Refuses the many-view flags that cannot apply: `--skip-existing` or a numbered output
-/// without several views, `--repeat` or camera flags that a views file overrides, outputs that
+/// without several views, `--skip-existing` with no file per view (`-o -` alone), `--repeat` or camera flags that a views file overrides, outputs that
 /// are not numbered patterns, and a numbered `--stats` (one record covers the run).
 pub fn check(s: &RenderSettings, typed: &Typed) -> Result<()> {
     let Some(source) = &s.views else {
@@ -78,6 +78,14 @@ pub fn check(s: &RenderSettings, typed: &Typed) -> Result<()> {
                 )));
             }
         }
+    }
+    if s.skip_existing && s.stdout_format.is_some() && s.ids.is_none() && s.depth.is_none() {
+        // no view writes a file whose presence would tell that it is done
+        return Err(Error::usage(
+            "--skip-existing: with -o - and no --ids or --depth, no view writes a file to \
+             find, so every view would stream again; leave out --skip-existing, or write the \
+             views to files (-o PATTERN, --ids, --depth)",
+        ));
     }
     if s.stdout_format.is_none() {
         Pattern::parse("-o", &s.output)?;

@@ -10,7 +10,7 @@ use crate::{Error, Result};
 /// The `.npy` (format 1.0) header for a C-order `(height, width)` array of `descr` elements.
 /// Magic, version, u16 length and dict together are padded with spaces to a multiple of 64
 /// bytes and end in `\n`, as NumPy itself writes them.
-fn npy_header(descr: &str, width: usize, height: usize) -> Vec<u8> {
+pub(super) fn npy_header(descr: &str, width: usize, height: usize) -> Vec<u8> {
     let dict =
         format!("{{'descr': '{descr}', 'fortran_order': False, 'shape': ({height}, {width}), }}");
     let unpadded = 10 + dict.len() + 1; // magic (6) + version (2) + length (2) + dict + '\n'

@@ -11,7 +11,7 @@
 use super::render::{check_memory, encode_to_stdout, run_stats, stats_key, write_frame};
 use crate::cli::{RenderSettings, ViewSource};
 use crate::error::{Error, Result};
-use crate::output::{self, OutputKind, OutputSet, Pattern};
+use crate::output::{self, Expected, OutputKind, OutputSet, Pattern};
 use crate::progress;
 use crate::render::{Options, Views};
 use crate::scene::views::{ViewLine, load_views, orbit};
@@ -220,7 +220,7 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
     progress::with_progress(cameras.len(), |done| -> Result<()> {
         for (k, camera) in cameras.iter().enumerate() {
             let paths = &names[k];
-            if s.skip_existing && !paths.is_empty() && paths.iter().all(|p| p.is_file()) {
+            if s.skip_existing && !paths.is_empty() && complete(&flags, paths, s) {
                 times.skipped += 1;
                 done.fetch_add(1, Ordering::Relaxed);
                 continue;
@@ -286,6 +286,20 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
         eprint!("{}", stats.text());
     }
     Ok(())
+}
+
+/// Whether every output of a view (`paths`, one for each of `flags`) is already a whole file
+/// of this run's size: a view with a missing, empty, truncated or other-sized output is
+/// rendered again by `--skip-existing`.
+fn complete(flags: &[(&'static str, OutputKind)], paths: &[PathBuf], s: &RenderSettings) -> bool {
+    flags.iter().zip(paths).all(|(&(flag, kind), path)| {
+        let what = match (kind, flag) {
+            (OutputKind::Npy, "--ids") => Expected::Npy("<i4"),
+            (OutputKind::Npy, _) => Expected::Npy("<f4"),
+            _ => Expected::Image,
+        };
+        output::is_complete(path, what, s.view.width, s.view.height)
+    })
 }
 
 /// An error of view `k`, naming its line in the views file (or its place in the orbit).

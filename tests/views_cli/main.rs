@@ -208,3 +208,63 @@ fn standard_output_carries_one_image_per_view() {
     assert_eq!(o.stdout.len(), 3 * (54 + 64 * 48 * 3));
     assert_eq!(dir.entries(), ["i0.npy", "i1.npy", "i2.npy"]);
 }
+
+/// The share of pixels re-decided in f64 is counted against every rendered view's pixels:
+/// four copies of scene 7's camera re-decide four times the pixels of one, and report the
+/// same fraction, in `--stats` and in `-time`.
+#[test]
+fn redecided_fraction_counts_every_views_pixels() {
+    let dir = TempDir::new("views-redecided");
+    let scene = seed_scene(7);
+    let scene = scene.to_str().unwrap();
+    let camera = "camera eye 0 0 0 look 0 0 -1 up 0 1 0\n";
+    let mut runs = Vec::new();
+    for n in [1, 4] {
+        dir.write("views.txt", &camera.repeat(n));
+        let o = run(
+            &dir.path,
+            &[
+                "-i",
+                scene,
+                "--views",
+                "views.txt",
+                "-o",
+                "f%d.png",
+                "--stats",
+                "s.json",
+                "-time",
+            ],
+        );
+        assert_success(&o, "views run");
+        let stats: serde_json::Value = serde_json::from_slice(&read(&dir.join("s.json"))).unwrap();
+        let percent = stderr(&o)
+            .lines()
+            .find_map(|l| {
+                l.split_once(" re-decided in f64: ")
+                    .map(|(_, r)| r.to_string())
+            })
+            .unwrap_or_else(|| panic!("{}", stderr(&o)));
+        runs.push((
+            stats["redecided_pixels"].as_u64().unwrap(),
+            stats["redecided_fraction"].as_f64().unwrap(),
+            percent,
+        ));
+    }
+    let (one, four) = (&runs[0], &runs[1]);
+    assert!(one.0 > 0, "scene 7 re-decides some pixels: {runs:?}");
+    assert_eq!(four.0, 4 * one.0, "{runs:?}");
+    assert_eq!(one.1, one.0 as f64 / (640.0 * 480.0), "{runs:?}");
+    assert_eq!(four.1, one.1, "{runs:?}");
+    // the text gives the same percentage, of every view's pixels
+    let pct = |t: &str| {
+        t.split_once('(')
+            .unwrap()
+            .1
+            .split('%')
+            .next()
+            .unwrap()
+            .to_string()
+    };
+    assert_eq!(pct(&four.2), pct(&one.2), "{runs:?}");
+    assert!(four.2.contains("of 4 views' pixels"), "{runs:?}");
+}

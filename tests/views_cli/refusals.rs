@@ -80,6 +80,23 @@ fn bad_views_and_patterns_are_refused_before_anything_is_written() {
             "cannot be used with",
         ),
         (&["--orbit", "0", "-o", "f%d.png"], "--orbit"),
+        // with every image streamed and no file per view, nothing tells a view is done
+        (
+            &["--orbit", "2", "-o", "-", "--skip-existing"],
+            "--skip-existing: with -o - and no --ids or --depth",
+        ),
+        (
+            &[
+                "--orbit",
+                "2",
+                "-o",
+                "-",
+                "--stats",
+                "s.json",
+                "--skip-existing",
+            ],
+            "--skip-existing: with -o - and no --ids or --depth",
+        ),
         (
             &["--orbit", "2", "-o", "f%d.png", "-fov", "180"],
             "field of view",

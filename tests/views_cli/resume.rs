@@ -34,7 +34,11 @@ fn skip_existing_renders_only_missing_views() {
         .collect();
     fs::remove_file(dir.join("f2.png")).unwrap();
     fs::remove_file(dir.join("i4.npy")).unwrap();
-    fs::write(dir.join("i0.npy"), b"kept").unwrap();
+    // a complete view is one whose files are whole: a valid .npy of the right shape, with
+    // other values, is left alone
+    let mut kept = before[0].clone();
+    *kept.last_mut().unwrap() ^= 0x55;
+    fs::write(dir.join("i0.npy"), &kept).unwrap();
     let again = args(&["--skip-existing"]);
     assert_success(&run(&dir.path, &as_refs(&again)), "rerun");
     let stats: serde_json::Value = serde_json::from_slice(&read(&dir.join("s.json"))).unwrap();
@@ -52,9 +56,8 @@ fn skip_existing_renders_only_missing_views() {
         each.iter()
             .all(|v| v["renders"].as_u64().is_some_and(|r| (1..=3).contains(&r)))
     );
-    assert_eq!(
-        read(&dir.join("i0.npy")),
-        b"kept",
+    assert!(
+        read(&dir.join("i0.npy")) == kept,
         "a complete view is left alone"
     );
     for (k, was) in before.iter().enumerate().skip(1) {
@@ -200,4 +203,112 @@ fn concurrent_view_runs_into_one_folder_both_complete() {
     }
     let entries = dir.entries();
     assert_eq!(entries.len(), 32, "{entries:?}");
+}
+
+/// A view counts as complete only when every output it names is whole: a 0-byte or truncated
+/// PNG, BMP or `.npy`, or one of another size, is rendered again (and rewritten equal to a
+/// fresh run's), while the whole views are left alone.
+#[test]
+fn skip_existing_renders_views_whose_files_are_truncated_or_empty() {
+    let dir = TempDir::new("views-skip-valid");
+    let scene = seed_scene(2);
+    let scene = scene.to_str().unwrap();
+    for ext in ["png", "bmp"] {
+        let image = format!("f%d.{ext}");
+        let args = [
+            "-i", scene, "--orbit", "6", "-size", "64x48", "-o", &image, "--ids", "i%d.npy",
+            "--depth", "d%d.npy",
+        ];
+        assert_success(&run(&dir.path, &args), "first run");
+        let names = |k: usize| {
+            [
+                format!("f{k}.{ext}"),
+                format!("i{k}.npy"),
+                format!("d{k}.npy"),
+            ]
+        };
+        let before: Vec<Vec<Vec<u8>>> = (0..6)
+            .map(|k| names(k).iter().map(|n| read(&dir.join(n))).collect())
+            .collect();
+        let cut = |name: String, keep: &dyn Fn(usize) -> usize| {
+            let bytes = read(&dir.join(&name));
+            fs::write(dir.join(&name), &bytes[..keep(bytes.len())]).unwrap();
+        };
+        cut(format!("f0.{ext}"), &|_| 0); // 0 bytes
+        cut(format!("f1.{ext}"), &|n| n - 1); // the PNG's IEND cut short, the BMP's last row
+        cut("i2.npy".into(), &|n| n - 4); // one value short
+        cut("d3.npy".into(), &|_| 100); // a header alone
+        // the same file at another size: whole, but not this run's
+        let small = TempDir::new("views-skip-valid-small");
+        let other = [
+            "-i", scene, "-size", "32x48", "-o", "x.png", "--ids", "x.npy", "--eye", "0,2,9",
+        ];
+        assert_success(&run(&small.path, &other), "another size");
+        fs::copy(small.join("x.npy"), dir.join("i4.npy")).unwrap();
+        let mut again = args.to_vec();
+        again.extend(["--skip-existing", "--stats", "s.json"]);
+        assert_success(&run(&dir.path, &again), "rerun");
+        let stats: serde_json::Value = serde_json::from_slice(&read(&dir.join("s.json"))).unwrap();
+        assert_eq!(
+            (
+                stats["views"]["rendered"].as_u64(),
+                stats["views"]["skipped"].as_u64()
+            ),
+            (Some(5), Some(1)),
+            "{ext}: views 0-4 had a broken file, view 5 was whole"
+        );
+        for (k, was) in before.iter().enumerate() {
+            for (name, bytes) in names(k).iter().zip(was) {
+                assert!(read(&dir.join(name)) == *bytes, "{name} rewritten whole");
+            }
+        }
+    }
+}
+
+/// `-time` when `--skip-existing` left out every view says so, with no NaN or negative time;
+/// the record's counts agree.
+#[test]
+fn time_says_no_view_rendered_when_every_view_was_skipped() {
+    let dir = TempDir::new("views-skip-all");
+    let scene = seed_scene(1);
+    let scene = scene.to_str().unwrap();
+    let args = [
+        "-i", scene, "--orbit", "3", "-size", "32x24", "-o", "f%d.png",
+    ];
+    assert_success(&run(&dir.path, &args), "first run");
+    let mut again = args.to_vec();
+    again.extend(["--skip-existing", "-time", "--stats", "s.json"]);
+    let o = run(&dir.path, &again);
+    assert_success(&o, "rerun");
+    let err = stderr(&o);
+    assert!(err.contains("no view rendered: all 3 skipped"), "{err}");
+    for bad in ["NaN", "inf", "-0.000"] {
+        assert!(!err.contains(bad), "{bad} in: {err}");
+    }
+    let stats: serde_json::Value = serde_json::from_slice(&read(&dir.join("s.json"))).unwrap();
+    assert_eq!(stats["views"]["rendered"], 0);
+    assert_eq!(stats["views"]["skipped"], 3);
+}
+
+/// `-o -` with `--ids`: the ids files tell which views are done, so `--skip-existing` applies.
+#[test]
+fn skip_existing_with_stdout_and_ids_streams_only_missing_views() {
+    let dir = TempDir::new("views-skip-stdout");
+    let scene = seed_scene(1);
+    let scene = scene.to_str().unwrap();
+    let args = [
+        "-i", scene, "--orbit", "3", "-size", "32x24", "-o", "-", "--ids", "i%d.npy",
+    ];
+    assert_success(&run(&dir.path, &args), "first run");
+    fs::remove_file(dir.join("i1.npy")).unwrap();
+    let mut again = args.to_vec();
+    again.push("--skip-existing");
+    let o = run(&dir.path, &again);
+    assert_success(&o, "rerun");
+    let pngs = o
+        .stdout
+        .windows(8)
+        .filter(|w| *w == b"\x89PNG\r\n\x1a\n")
+        .count();
+    assert_eq!(pngs, 1, "only view 1 streams again");
 }
