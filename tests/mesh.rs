@@ -167,3 +167,81 @@ fn read_npy_i32(path: &std::path::Path) -> Vec<i32> {
         .map(|c| i32::from_le_bytes([c[0], c[1], c[2], c[3]]))
         .collect()
 }
+
+/// The columns and rows the hits of `ids` (`w` wide) span, as (x0, x1, y0, y1), inclusive.
+fn hit_box(ids: &[i32], w: usize) -> (usize, usize, usize, usize) {
+    let mut b = (usize::MAX, 0, usize::MAX, 0);
+    for (k, _) in ids.iter().enumerate().filter(|(_, i)| **i >= 0) {
+        let (x, y) = (k % w, k / w);
+        b = (b.0.min(x), b.1.max(x), b.2.min(y), b.3.max(y));
+    }
+    b
+}
+
+/// `lanecast -i mesh.obj` frames the mesh to fill the image within a 5% margin on each side
+/// (README "Camera"): its hits stay inside the central 90% of the width and height, and at
+/// the default size reach that bound (they filled about a third before); a wider image, a
+/// narrower field of view and every view of a turntable keep the margin, reaching it too.
+#[test]
+fn a_mesh_alone_fills_the_frame_within_the_stated_margin() {
+    let dir = TempDir::new("mesh-framing");
+    let meshes = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/meshes");
+    for name in ["bunny.obj", "teapot.obj"] {
+        dir.copy_in(&meshes.join(name), name);
+        // (size, flags, whether the mesh reaches the margin: a portrait image keeps the
+        // default camera, the mesh well inside)
+        for (size, extra, tight) in [
+            ("640x480", &[][..], true),
+            ("320x180", &[][..], true),
+            ("640x480", &["-fov", "30"][..], true),
+            ("180x320", &[][..], false),
+        ] {
+            let mut args = vec!["-i", name, "--ids", "ids.npy", "-o", "o.png", "-size", size];
+            args.extend(extra);
+            assert_success(&run(&dir.path, &args), &args.join(" "));
+            let (w, h) = size.split_once('x').unwrap();
+            let (w, h): (usize, usize) = (w.parse().unwrap(), h.parse().unwrap());
+            let ids = read_npy_i32(&dir.join("ids.npy"));
+            let (x0, x1, y0, y1) = hit_box(&ids, w);
+            let what = format!("{name} {size} {extra:?}: hits {x0}..={x1} x {y0}..={y1}");
+            // inside the central 90%, a pixel of slack for the pixel grid
+            let (mx, my) = (w as f64 * 0.05 - 1.0, h as f64 * 0.05 - 1.0);
+            let gaps = [x0, w - 1 - x1, y0, h - 1 - y1].map(|g| g as f64);
+            assert!(gaps[0] >= mx && gaps[1] >= mx, "{what}");
+            assert!(gaps[2] >= my && gaps[3] >= my, "{what}");
+            if tight {
+                // reaching the margin on one side, and filling most of the frame
+                let near = gaps[..2].iter().any(|&g| g <= mx + 3.0)
+                    || gaps[2..].iter().any(|&g| g <= my + 3.0);
+                assert!(near, "{what}");
+                let fill = ((x1 - x0 + 1) as f64 / w as f64).max((y1 - y0 + 1) as f64 / h as f64);
+                assert!(fill > 0.75, "{what}: fills {fill:.2}");
+            }
+        }
+    }
+    // a turntable of a mesh keeps every view inside the margin
+    let o = run(
+        &dir.path,
+        &[
+            "-i",
+            "teapot.obj",
+            "--orbit",
+            "8",
+            "-size",
+            "160x120",
+            "-o",
+            "t%d.png",
+            "--ids",
+            "t%d.npy",
+        ],
+    );
+    assert_success(&o, "orbit");
+    for k in 0..8 {
+        let ids = read_npy_i32(&dir.join(&format!("t{k}.npy")));
+        let (x0, x1, y0, y1) = hit_box(&ids, 160);
+        assert!(
+            x0 >= 7 && x1 <= 152 && y0 >= 5 && y1 <= 114,
+            "view {k}: {x0} {x1} {y0} {y1}"
+        );
+    }
+}

@@ -41,6 +41,7 @@ fn load_view(v: &ViewSettings, set: &OutputSet) -> Result<(Scene, Camera)> {
         eprintln!("lanecast: warning: {w}");
     }
     let mut scene = scene;
+    frame_mesh_alone(&mut scene, v, false);
     v.camera.apply(&mut scene.camera)?;
     if v.camera.eye.is_some() {
         // the range rule is relative to the eye (kernels work eye-relative): check it again
@@ -48,6 +49,34 @@ fn load_view(v: &ViewSettings, set: &OutputSet) -> Result<(Scene, Camera)> {
     }
     let camera = Camera::for_scene(&scene, v.width, v.height, v.fov)?;
     Ok((scene, camera))
+}
+
+/// A mesh rendered alone (`-i mesh.obj`, `.ply`) stays inside the framing margin
+/// (`scene::parse::FRAMING_MARGIN`, README "Camera") of the image it is rendered to: the
+/// loaded scene's camera frames it for the default image (640x480 at 60 degrees, as every
+/// front's default), and moves back along its view, no more than needed, where that camera
+/// would cross the margin at this size and field of view (a wider image, a narrower `-fov`)
+/// or on another view of a turntable (`turntable`, `--orbit`). `--eye`, `--look`, `--up`
+/// apply after.
+fn frame_mesh_alone(scene: &mut Scene, v: &ViewSettings, turntable: bool) {
+    use crate::scene::parse::{Framing, framing_camera_for};
+    if crate::scene::mesh::MeshFormat::of(&v.input).is_none() {
+        return;
+    }
+    let framing = Framing {
+        width: v.width,
+        height: v.height,
+        fov_deg: v.fov.unwrap_or(crate::camera::DEFAULT_FOV),
+        turntable,
+    };
+    let camera = (scene.shapes.meshes().next()).and_then(|(m, _)| framing_camera_for(m, &framing));
+    // both look at the box's centre along -z: the farther eye keeps the mesh inside in both
+    if let Some(camera) = camera
+        && camera.look == scene.camera.look
+        && camera.eye.z > scene.camera.eye.z
+    {
+        scene.camera = camera;
+    }
 }
 
 /// The name `--method` takes for `method`: the default method with `--precision auto` runs as

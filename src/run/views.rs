@@ -183,6 +183,7 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
         eprintln!("lanecast: warning: {w}");
     }
     let mut scene = scene;
+    super::frame_mesh_alone(&mut scene, &s.view, matches!(source, ViewSource::Orbit(_)));
     s.view.camera.apply(&mut scene.camera)?;
     let cameras = cameras(s, source, &lines, &scene)?;
 

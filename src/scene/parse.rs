@@ -379,9 +379,36 @@ fn join(
     })
 }
 
-/// Half the angle within which [`framing_camera`] keeps a mesh's bounding sphere: 15 degrees,
-/// which fits the default 60-degree horizontal field of view on images up to 2.15:1 wide.
-const FRAMING_HALF_ANGLE_DEG: f64 = 15.0;
+/// The margin [`framing_camera_for`] leaves between a mesh rendered alone and the image's
+/// border: 5% of the image's width and of its height on each side, the mesh inside the
+/// central 90% in both directions and reaching that bound on at least one side.
+pub const FRAMING_MARGIN: f64 = 0.05;
+
+/// The image a framing camera is made for ([`framing_camera_for`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Framing {
+    /// The image's width in pixels.
+    pub width: u32,
+    /// The image's height in pixels.
+    pub height: u32,
+    /// The horizontal field of view, degrees.
+    pub fov_deg: f64,
+    /// Frame every view of a turntable about the camera's up axis (`--orbit`), not just the
+    /// first.
+    pub turntable: bool,
+}
+
+impl Default for Framing {
+    /// The command line's default image: 640x480 at 60 degrees, one view.
+    fn default() -> Framing {
+        Framing {
+            width: 640,
+            height: 480,
+            fov_deg: 60.0,
+            turntable: false,
+        }
+    }
+}
 
 /// An OBJ or PLY file rendered on its own (`lanecast -i mesh.obj`, `-i scan.ply`): its faces as
 /// triangles, in file order, seen by [`framing_camera`]. Shapes carry line 0 (no scene line); range errors name the
@@ -415,36 +442,71 @@ pub(super) fn mesh_scene(path: &Path, (mesh, degenerate): (Mesh, usize)) -> Resu
     })
 }
 
-/// The default camera of a mesh rendered alone: looking at the centre of the triangles'
-/// bounding box along -z (from the +z side, the usual front of an OBJ model), up +y, from
-/// `R / sin(15 deg)` away (`R`: half the box's diagonal), so the box's bounding sphere fills at
-/// most 15 degrees either side of the view axis: whole in view with the default field of view
-/// (README "Rendering an OBJ directly"). `None` when the box is a point (or there are no faces).
+/// The default camera of a mesh rendered alone, for the default image ([`Framing::default`]):
+/// [`framing_camera_for`].
 pub fn framing_camera(mesh: &Mesh) -> Option<CameraSpec> {
-    framing_camera_of(
-        mesh.faces
-            .iter()
-            .flatten()
-            .map(|&i| mesh.vertices[i as usize]),
+    framing_camera_for(mesh, &Framing::default())
+}
+
+/// The camera that frames a mesh rendered alone in the image `f` describes: looking at the
+/// centre of the triangles' bounding box along -z (from the +z side, the usual front of an OBJ
+/// model), up +y, from as near as keeps every vertex inside the central `1 - 2 *`
+/// [`FRAMING_MARGIN`] of the image's width and height (README "Camera"). For a turntable,
+/// every angle about the vertical axis through the look point keeps the mesh inside. `None`
+/// when the box is a point (or there are no faces).
+pub fn framing_camera_for(mesh: &Mesh, f: &Framing) -> Option<CameraSpec> {
+    let each = |visit: &mut dyn FnMut(DVec3)| {
+        for &i in mesh.faces.iter().flatten() {
+            visit(mesh.vertices[i as usize]);
+        }
+    };
+    frame_points(each, f)
+}
+
+/// [`framing_camera_for`] the default image ([`Framing::default`]) for any points (the
+/// vertices of primitives of every type, as `scene_from_arrays` gives them).
+pub fn framing_camera_of(points: impl IntoIterator<Item = DVec3>) -> Option<CameraSpec> {
+    let points: Vec<DVec3> = points.into_iter().collect();
+    frame_points(
+        |visit: &mut dyn FnMut(DVec3)| points.iter().for_each(|&p| visit(p)),
+        &Framing::default(),
     )
 }
 
-/// [`framing_camera`]'s camera for the bounding box of `points` (every front's rule: a mesh's
-/// vertices, a quad's corners, a sphere's bounding-box corners; `scene_from_arrays` frames
-/// all three). `None` when the box is a point, is empty, or spans more than f64 can hold.
-pub fn framing_camera_of(points: impl IntoIterator<Item = DVec3>) -> Option<CameraSpec> {
+/// [`framing_camera_for`] for the points `each` visits (twice: the box, then the distance).
+fn frame_points(each: impl Fn(&mut dyn FnMut(DVec3)), f: &Framing) -> Option<CameraSpec> {
     let mut lo = DVec3::splat(f64::INFINITY);
     let mut hi = DVec3::splat(f64::NEG_INFINITY);
-    for v in points {
+    each(&mut |v| {
         lo = lo.min(v);
         hi = hi.max(v);
-    }
+    });
     let radius = (hi - lo).length() / 2.0;
     if !(radius > 0.0 && radius.is_finite()) {
         return None;
     }
     let look = (lo + hi) / 2.0;
-    let distance = radius / FRAMING_HALF_ANGLE_DEG.to_radians().sin();
+    // A point p (from the look point) is in the central part of the image when |p.x| <= kx
+    // (d - p.z) and |p.y| <= ky (d - p.z), d the eye's distance along +z: when d >= p.z +
+    // |p.x| / kx and d >= p.z + |p.y| / ky.
+    let fill = 1.0 - 2.0 * FRAMING_MARGIN;
+    let half_w = (f.fov_deg.to_radians() / 2.0).tan();
+    let kx = fill * half_w;
+    let ky = fill * half_w * f.height as f64 / f.width as f64;
+    let need = |p: DVec3| {
+        if f.turntable {
+            // turned about +y, p.x and p.z take any values with p.x^2 + p.z^2 = rho^2: the
+            // largest p.z + |p.x| / kx over the circle is rho * sqrt(1 + 1 / kx^2), and the
+            // nearest p.z is rho
+            let rho = p.x.hypot(p.z);
+            (rho * (1.0 + 1.0 / (kx * kx)).sqrt()).max(rho + p.y.abs() / ky)
+        } else {
+            (p.z + p.x.abs() / kx).max(p.z + p.y.abs() / ky)
+        }
+    };
+    // never on or behind a point: at least a little in front of the box
+    let mut distance = (hi.z - look.z) + 1e-3 * radius;
+    each(&mut |v| distance = distance.max(need(v - look)));
     Some(CameraSpec {
         eye: look + DVec3::Z * distance,
         look,
