@@ -13,6 +13,7 @@
 
 mod args;
 mod camera;
+mod spelling;
 mod views;
 
 use crate::error::{Error, Result};
@@ -164,7 +165,11 @@ fn parse_raw(raw: &[OsString]) -> Result<Command> {
             }
         }
     };
-    let matches = match Cli::command().try_get_matches_from(translate(raw.iter().cloned())) {
+    let args = translate(raw.iter().cloned());
+    let mut command = Cli::command();
+    command.build();
+    spelling::check(&args, &command)?;
+    let matches = match command.try_get_matches_from(args) {
         Ok(m) => m,
         Err(e) => return clap_error(e),
     };

@@ -164,8 +164,7 @@ pub(super) struct RenderArgs {
     pub(super) views: Option<PathBuf>,
     /// Render N views on a turntable: the camera turned about its up axis through its look
     /// point, at its distance and height. Outputs as with --views.
-    #[arg(long, value_name = "N",
-          value_parser = clap::value_parser!(u32).range(1..=crate::limits::MAX_VIEWS as i64))]
+    #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = orbit_views)]
     pub(super) orbit: Option<u32>,
     /// With --views or --orbit: leave out every view whose outputs all exist (a rerun picks up
     /// where an interrupted run stopped).
@@ -183,8 +182,30 @@ pub(super) struct CompareArgs {
     pub(super) output: Option<PathBuf>,
     /// Unexcused id mismatches allowed, in parts per million of the pixels, before the exit
     /// code turns to 1.
-    #[arg(long, value_name = "PPM", default_value_t = 0.0)]
+    #[arg(
+        long,
+        value_name = "PPM",
+        default_value_t = 0.0,
+        allow_negative_numbers = true
+    )]
     pub(super) max_mismatch_ppm: f64,
+}
+
+/// `--orbit N`'s value, with the reason a bad one is refused (clap's message names the flag
+/// and the value as typed).
+fn orbit_views(s: &str) -> Result<u32, String> {
+    let max = crate::limits::MAX_VIEWS;
+    let n: i128 = s.parse().map_err(|_| {
+        format!("the number of views on the turntable must be a whole number, 1 to {max}")
+    })?;
+    match u32::try_from(n) {
+        Ok(n) if (1..=max as u64).contains(&(n as u64)) => Ok(n),
+        _ if n < 1 => Err(format!(
+            "the number of views on the turntable must be at least 1 (views are \
+             360/N degrees apart), at most {max}"
+        )),
+        _ => Err(format!("at most {max} views per run (limits::MAX_VIEWS)")),
+    }
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]

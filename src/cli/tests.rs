@@ -192,3 +192,115 @@ fn compare_subcommand() {
         other => panic!("{other:?}"),
     }
 }
+
+/// The message of the usage error `s` gives.
+fn usage_message(s: &str) -> String {
+    match parse(args(s)) {
+        Err(Error::Usage(m)) => m,
+        other => panic!("{s}: expected a usage error, got {other:?}"),
+    }
+}
+
+/// Every long flag of the command line and of `compare`, as clap's `Command` defines them,
+/// typed with one dash, is refused with a message naming it as typed and its two-dash form,
+/// whatever comes before or after it (never read as `-i ds`, a subcommand, or a short flag).
+#[test]
+fn every_long_flag_with_one_dash_is_named_with_its_two_dash_form() {
+    let mut top = Cli::command();
+    top.build();
+    let compare = top.find_subcommand("compare").unwrap().clone();
+    let mut walked = 0;
+    for (prefix, cmd) in [("", &top), ("compare ", &compare)] {
+        for arg in cmd.get_arguments() {
+            let Some(long) = arg.get_long() else { continue };
+            if SINGLE_DASH.iter().any(|(short, _)| short[1..] == *long) {
+                continue; // -size, -fov, -time: the original's, which work
+            }
+            for line in [
+                format!("{prefix}-i s.sc -{long} x"),
+                format!("{prefix}-{long} x -i s.sc"),
+                format!("{prefix}-{long}=x -i s.sc"),
+            ] {
+                let m = usage_message(&line);
+                assert!(m.starts_with(&format!("-{long}")), "{line}: {m}");
+                assert!(m.contains(&format!("--{long}")), "{line}: {m}");
+            }
+            walked += 1;
+        }
+    }
+    assert!(walked > 30, "only {walked} long flags");
+}
+
+/// Misspelt one-dash flags, a scene without `-i`, render flags given to `compare`, and bad
+/// values of `--orbit` and `--max-mismatch-ppm`: named as typed, with what was meant or why.
+#[test]
+fn misreadings_are_named_as_typed_with_what_was_meant() {
+    for (line, want) in [
+        (
+            "-i s.sc -szie 800x600",
+            "-szie: no such flag; did you mean -size?",
+        ),
+        ("-i s.sc -tim", "-tim: no such flag; did you mean -time?"),
+        (
+            "-i s.sc -ids x.npy",
+            "-ids: long flags take two dashes: --ids",
+        ),
+        (
+            "-ids x.npy -i s.sc",
+            "-ids: long flags take two dashes: --ids",
+        ),
+        (
+            "-i s.sc -output x.png",
+            "-output: long flags take two dashes: --output",
+        ),
+        (
+            "-i s.sc -orbit 4",
+            "-orbit: long flags take two dashes: --orbit",
+        ),
+        (
+            "good.sc",
+            "good.sc: the scene is given with -i: lanecast -i good.sc",
+        ),
+        (
+            "good.sc -o x.png",
+            "good.sc: the scene is given with -i: lanecast -i good.sc",
+        ),
+        (
+            "compare mesh.obj",
+            "mesh.obj: the scene is given with -i: lanecast compare -i mesh.obj",
+        ),
+        (
+            "compare -i s.sc --kernel scalar",
+            "--kernel: applies to the render command (lanecast -i SCENE ...), not to compare: \
+             compare always renders with both kernels",
+        ),
+        (
+            "compare -i s.sc --seed 3",
+            "--seed: applies to the render command",
+        ),
+        (
+            "-i s.sc --orbit -3",
+            "the number of views on the turntable must be at least 1",
+        ),
+        ("-i s.sc --orbit 0", "must be at least 1"),
+        ("-i s.sc --orbit 1000001", "at most 1000000 views per run"),
+        ("-i s.sc --orbit x", "must be a whole number"),
+        (
+            "compare -i s.sc --max-mismatch-ppm -1",
+            "--max-mismatch-ppm -1: must be a number of parts per million, 0 or more",
+        ),
+    ] {
+        let m = usage_message(line);
+        assert!(m.contains(want), "{line}: {m}");
+    }
+    // -3 is named as typed with --orbit
+    let m = usage_message("-i s.sc --orbit -3");
+    assert!(m.contains("'-3'") && m.contains("--orbit"), "{m}");
+    // values that start with a dash are values, not flags
+    assert_eq!(
+        render("-i s.sc --eye -1,2,3").view.camera.eye.unwrap().x,
+        -1.0
+    );
+    assert_eq!(render("-i s.sc -o -").output, PathBuf::from("-"));
+    assert_eq!(render("-is.sc").view.input, PathBuf::from("s.sc"));
+}

@@ -291,3 +291,47 @@ fn existing_output_survives_a_failed_render() {
     );
     image_of(&dir.join("existing.png"), 16, 12);
 }
+
+/// The misreadings new users typed, through the binary: exit 2, the argument as typed and
+/// what was meant (the flag walk is `cli::tests`, on clap's own `Command`).
+#[test]
+fn one_dash_long_flags_and_a_bare_scene_are_named_as_typed() {
+    let dir = with_scene1("misread");
+    for (args, want) in [
+        (
+            &["-i", "scene1.sc", "-szie", "800x600"][..],
+            "-szie: no such flag; did you mean -size?",
+        ),
+        (
+            &["-i", "scene1.sc", "-ids", "x.npy"],
+            "-ids: long flags take two dashes: --ids",
+        ),
+        (
+            &["-i", "scene1.sc", "-output", "x.png"],
+            "-output: long flags take two dashes: --output",
+        ),
+        (
+            &["-i", "scene1.sc", "-orbit", "4"],
+            "-orbit: long flags take two dashes: --orbit",
+        ),
+        (
+            &["scene1.sc"],
+            "scene1.sc: the scene is given with -i: lanecast -i scene1.sc",
+        ),
+        (
+            &["compare", "-i", "scene1.sc", "--kernel", "scalar"],
+            "--kernel: applies to the render command",
+        ),
+        (
+            &["-i", "scene1.sc", "--orbit", "-3"],
+            "'-3' for '--orbit <N>': the number of views",
+        ),
+        (
+            &["compare", "-i", "scene1.sc", "--max-mismatch-ppm", "-1"],
+            "--max-mismatch-ppm -1: must be",
+        ),
+    ] {
+        let o = run(&dir.path, args);
+        assert_rejected(&o, 2, &[want], &dir, &["scene1.sc"]);
+    }
+}
