@@ -13,6 +13,7 @@ target/ (docs/performance.md: "The whole command and its phases").
 Reads `v` and `f` lines only (polygons fan-triangulated, `i/t/n` and negative indices
 accepted), like lanecast's own reader.
 """
+import argparse
 import sys
 
 
@@ -55,9 +56,17 @@ def subdivide(verts, tris):
 
 
 def main():
-    if len(sys.argv) != 4:
-        sys.exit(__doc__)
-    src, dst, levels = sys.argv[1], sys.argv[2], int(sys.argv[3])
+    # --help prints the usage and exits 0; a missing or bad argument exits 2 with the usage
+    parser = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
+    parser.add_argument("src", metavar="IN.obj", help="triangle mesh to subdivide")
+    parser.add_argument("dst", metavar="OUT.obj", help="where to write the result")
+    parser.add_argument("levels", metavar="LEVELS", type=int, help="levels (4x triangles each)")
+    args = parser.parse_args()
+    if args.levels < 0:
+        parser.error(f"LEVELS {args.levels}: must be 0 or more")
+    src, dst, levels = args.src, args.dst, args.levels
     verts, tris = read_obj(src)
     for _ in range(levels):
         tris = subdivide(verts, tris)

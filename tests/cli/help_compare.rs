@@ -75,3 +75,42 @@ fn compare_reports_and_writes_a_diff_image() {
     );
     assert_rejected(&o, 2, &["diff.jpg2"], &dir, &["diff.png", "scene1.sc"]);
 }
+
+/// `scripts/subdivide.py --help` prints its usage and exits 0 (it exited 1), a missing
+/// argument exits 2 with the usage, and a run subdivides (one level: 4 triangles a triangle).
+/// Skipped where python3 is absent.
+#[test]
+fn subdivide_script_help_exits_0_and_subdivides() {
+    use std::process::Command;
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("scripts/subdivide.py");
+    let py = |args: &[&str], cwd: &Path| {
+        Command::new("python3")
+            .arg(&script)
+            .args(args)
+            .current_dir(cwd)
+            .output()
+    };
+    let dir = TempDir::new("subdivide");
+    let Ok(help) = py(&["--help"], &dir.path) else {
+        eprintln!("python3 not found: skipped");
+        return;
+    };
+    assert_eq!(help.status.code(), Some(0), "{}", stderr(&help));
+    assert!(
+        stdout(&help).starts_with("usage: subdivide.py"),
+        "{}",
+        stdout(&help)
+    );
+    let none = py(&[], &dir.path).unwrap();
+    assert_eq!(none.status.code(), Some(2));
+    assert!(
+        stderr(&none).contains("usage: subdivide.py"),
+        "{}",
+        stderr(&none)
+    );
+    dir.write("t.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    let o = py(&["t.obj", "t1.obj", "1"], &dir.path).unwrap();
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let text = fs::read_to_string(dir.join("t1.obj")).unwrap();
+    assert_eq!(text.lines().filter(|l| l.starts_with("f ")).count(), 4);
+}
