@@ -442,7 +442,22 @@ test('zoom stops where the scene stays framed and renderable, out and in; no err
     assert.ok(shown > 0, `${name}: nothing shown`);
     if (dy > 0) await page.screenshot({ path: path.join(shots, 'zoom-out.png') });
   }
+  // a camera past the limits (set by a script: the wheel stops short of it) is refused with a
+  // message about the camera, not the scene's mesh line, and the page goes back to the last
+  // camera that rendered
+  const good = await page.evaluate(() => structuredClone(window.lanecastApp.camera));
+  await page.evaluate(() => {
+    const app = window.lanecastApp;
+    app.camera = { ...app.camera, eye: app.camera.eye.map((v) => v * 1e25) };
+    app.dirty = true;
+    app.frame();
+  });
+  assert.match(await page.textContent('#error'), /^this view cannot be rendered \(camera eye \S+ \S+ \S+ look 0 22 0\): /);
+  await page.evaluate(() => window.lanecastApp.frame());
+  assert.deepEqual(await page.evaluate(() => window.lanecastApp.camera), good);
+  assert.equal(await page.isHidden('#error'), false, 'the message stays until the next view');
   await drawn(() => page.keyboard.press('r'));
+  assert.equal(await page.isHidden('#error'), true);
   // at home in a wide window: whole, ears to feet (the fov fitted), and a pinned face of its
   // 52,000 stands out
   const rows = await page.evaluate(() => {

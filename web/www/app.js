@@ -62,6 +62,7 @@ function setScene(name, bytes, files, menuName = '') {
   app.home = { eye: c.eye, look: c.look, up: c.up, fov: c.fov ?? scene.default_fov };
   app.camera = structuredClone(app.home);
   app.good = null;
+  app.viewError = 0;
   app.bounds = scene.bounds;
   app.sceneName = name;
   app.menuName = menuName;
@@ -327,11 +328,12 @@ function frame() {
     } catch (e) {
       // a view the engine refuses (which the zoom and pan limits should leave none of): its
       // message, which names the camera and not the scene, and back to the last camera that
-      // rendered
+      // rendered (the scene's own before any did)
       showError(e.message);
       app.viewError = 2; // shown until a view after the restored one renders
-      if (app.good && app.camera !== app.good) {
-        app.camera = structuredClone(app.good);
+      const back = app.good ?? app.home;
+      if (JSON.stringify(app.camera) !== JSON.stringify(back)) {
+        app.camera = structuredClone(back);
         syncFov();
       } else {
         app.dirty = false;
@@ -348,6 +350,10 @@ function frame() {
     shareView();
   } else {
     rgba = lc.shade(shading());
+    if (rgba.length !== w * h * 4) {
+      app.reshade = false; // no frame to shade (the last view was refused) or an old size
+      return false;
+    }
   }
   // straight from wasm memory, no copy (the view is fresh: taken after the calls)
   ctx.putImageData(new ImageData(rgba, w, h), 0, 0);
