@@ -377,8 +377,13 @@ function frame() {
 }
 app.frame = frame;
 
-/** The camera line's field grows to show the whole line. */
+/**
+ * The camera line's field grows to show the whole line: by CSS (field-sizing) where the
+ * browser has it, else measured here (a layout per frame).
+ */
+const sizedByCss = globalThis.CSS?.supports?.('field-sizing', 'content') ?? false;
 function fitCamline() {
+  if (sizedByCss) return;
   ui.camline.style.height = 'auto';
   ui.camline.style.height = `${ui.camline.scrollHeight + 2}px`;
 }
