@@ -250,7 +250,8 @@ impl Stats {
             "renders_s": self.renders,
             "render_best_s": self.render_best(),
             "render_median_s": self.render_median(),
-            "rays_per_s": self.rays_per_s(),
+            // no render (every view skipped): no rate
+            "rays_per_s": (!self.renders.is_empty()).then(|| self.rays_per_s()),
             "peak_rss_bytes": peak_rss_kib().map(|k| k * 1024),
         });
         let mut record = record;

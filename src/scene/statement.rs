@@ -1,5 +1,6 @@
 //! One `.sc` line at a time: tokens, numbers, shapes and the camera, and the messages that
-//! point at `FILE:LINE:COL` (the column counted in characters, 0 for the whole line).
+//! point at `FILE:LINE:COL` (the column counted in characters: the offending token's, or
+//! the statement's first token's for a rule about the statement as a whole, `Ctx::whole`).
 //!
 //! [`fast_shape`] reads the common line, a well-formed primitive, without building tokens; on
 //! anything unusual it gives up and the caller takes the general path ([`tokenize`],

@@ -288,6 +288,7 @@ fn time_says_no_view_rendered_when_every_view_was_skipped() {
     let stats: serde_json::Value = serde_json::from_slice(&read(&dir.join("s.json"))).unwrap();
     assert_eq!(stats["views"]["rendered"], 0);
     assert_eq!(stats["views"]["skipped"], 3);
+    assert!(stats["rays_per_s"].is_null(), "no render, no rate");
 }
 
 /// `-o -` with `--ids`: the ids files tell which views are done, so `--skip-existing` applies.
