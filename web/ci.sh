@@ -3,8 +3,8 @@
 # missing (web/build.sh --test: rustc-web, cargo-web, rust-web-src, lld-22, chromium, and
 # playwright-core from web/package-lock.json), builds web/dist, builds the native command line
 # the tests compare against, and runs the web crate's own tests (natively), the node test (the
-# module against the CLI, byte for byte) and the browser test (the served page in headless
-# chromium). Exits non-zero on any failure.
+# module against the CLI, byte for byte), the page's camera rules (page.test.mjs) and the
+# browser test (the served page in headless chromium). Exits non-zero on any failure.
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
