@@ -51,25 +51,33 @@ fn load_view(v: &ViewSettings, set: &OutputSet) -> Result<(Scene, Camera)> {
     Ok((scene, camera))
 }
 
-/// A mesh rendered alone (`-i mesh.obj`, `.ply`) stays inside the framing margin
-/// (`scene::parse::FRAMING_MARGIN`, README "Camera") of the image it is rendered to: the
-/// loaded scene's camera frames it for the default image (640x480 at 60 degrees, as every
-/// front's default), and moves back along its view, no more than needed, where that camera
-/// would cross the margin at this size and field of view (a wider image, a narrower `-fov`)
-/// or on another view of a turntable (`turntable`, `--orbit`). `--eye`, `--look`, `--up`
-/// apply after.
+/// A mesh rendered alone (`-i mesh.obj`, `.ply`) stays whole in the image it is rendered
+/// to. The loaded scene's camera is every front's default (`scene::parse::framing_camera`:
+/// a 5% margin at 640x480, whole up to 16:9, at 60 degrees), kept as it is for those
+/// images, so that the command line's frames are the browser's and Python's. A wider image, a
+/// narrower `-fov`, or a turntable (`turntable`, `--orbit`) would cross its border: there the
+/// camera moves back along its view, no more than the 5% margin needs (README "Camera").
+/// `--eye`, `--look`, `--up` apply after.
 fn frame_mesh_alone(scene: &mut Scene, v: &ViewSettings, turntable: bool) {
-    use crate::scene::parse::{Framing, framing_camera_for};
+    use crate::scene::parse::{FRAMING_MARGIN, FRAMING_WIDEST, Framing, framing_camera_for};
     if crate::scene::mesh::MeshFormat::of(&v.input).is_none() {
+        return;
+    }
+    let fov_deg = v.fov.unwrap_or(crate::camera::DEFAULT_FOV);
+    let (ww, wh) = FRAMING_WIDEST;
+    let wider = v.width as u64 * wh as u64 > v.height as u64 * ww as u64;
+    if !(wider || turntable || fov_deg < crate::camera::DEFAULT_FOV) {
         return;
     }
     let framing = Framing {
         width: v.width,
         height: v.height,
-        fov_deg: v.fov.unwrap_or(crate::camera::DEFAULT_FOV),
+        fov_deg,
+        margin: FRAMING_MARGIN,
         turntable,
     };
-    let camera = (scene.shapes.meshes().next()).and_then(|(m, _)| framing_camera_for(m, &framing));
+    let camera =
+        (scene.shapes.meshes().next()).and_then(|(m, _)| framing_camera_for(m, &[framing]));
     // both look at the box's centre along -z: the farther eye keeps the mesh inside in both
     if let Some(camera) = camera
         && camera.look == scene.camera.look

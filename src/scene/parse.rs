@@ -379,35 +379,54 @@ fn join(
     })
 }
 
-/// The margin [`framing_camera_for`] leaves between a mesh rendered alone and the image's
-/// border: 5% of the image's width and of its height on each side, the mesh inside the
-/// central 90% in both directions and reaching that bound on at least one side.
+/// The margin the default framing camera ([`framing_camera`]) leaves between a mesh rendered
+/// alone and the border of the default 640x480 image: 5% of the width and of the height on
+/// each side, the mesh inside the central 90% in both directions.
 pub const FRAMING_MARGIN: f64 = 0.05;
 
-/// The image a framing camera is made for ([`framing_camera_for`]).
+/// The margin the default framing camera keeps on every image up to [`FRAMING_WIDEST`] wide
+/// at the default field of view (so a 1920x1080 render of a mesh stays whole).
+pub const FRAMING_WIDE_MARGIN: f64 = 0.02;
+
+/// The widest image (width / height) the default framing camera keeps whole: 16:9.
+pub const FRAMING_WIDEST: (u32, u32) = (16, 9);
+
+/// An image a framing camera frames its mesh in ([`framing_camera_for`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Framing {
-    /// The image's width in pixels.
+    /// The image's width (any unit: only width / height counts).
     pub width: u32,
-    /// The image's height in pixels.
+    /// The image's height.
     pub height: u32,
     /// The horizontal field of view, degrees.
     pub fov_deg: f64,
+    /// The share of the width and of the height left free on each side.
+    pub margin: f64,
     /// Frame every view of a turntable about the camera's up axis (`--orbit`), not just the
     /// first.
     pub turntable: bool,
 }
 
-impl Default for Framing {
-    /// The command line's default image: 640x480 at 60 degrees, one view.
-    fn default() -> Framing {
+impl Framing {
+    /// The images the default framing camera frames ([`framing_camera`]): the default
+    /// 640x480 at 60 degrees with [`FRAMING_MARGIN`], and the widest image it keeps whole,
+    /// [`FRAMING_WIDEST`] at 60 degrees with [`FRAMING_WIDE_MARGIN`].
+    pub const DEFAULT: [Framing; 2] = [
         Framing {
             width: 640,
             height: 480,
             fov_deg: 60.0,
+            margin: FRAMING_MARGIN,
             turntable: false,
-        }
-    }
+        },
+        Framing {
+            width: FRAMING_WIDEST.0,
+            height: FRAMING_WIDEST.1,
+            fov_deg: 60.0,
+            margin: FRAMING_WIDE_MARGIN,
+            turntable: false,
+        },
+    ];
 }
 
 /// An OBJ or PLY file rendered on its own (`lanecast -i mesh.obj`, `-i scan.ply`): its faces as
@@ -442,39 +461,38 @@ pub(super) fn mesh_scene(path: &Path, (mesh, degenerate): (Mesh, usize)) -> Resu
     })
 }
 
-/// The default camera of a mesh rendered alone, for the default image ([`Framing::default`]):
-/// [`framing_camera_for`].
+/// The default camera of a mesh rendered alone, every front's: [`framing_camera_for`] the
+/// images of [`Framing::DEFAULT`].
 pub fn framing_camera(mesh: &Mesh) -> Option<CameraSpec> {
-    framing_camera_for(mesh, &Framing::default())
+    framing_camera_for(mesh, &Framing::DEFAULT)
 }
 
-/// The camera that frames a mesh rendered alone in the image `f` describes: looking at the
+/// The camera that frames a mesh rendered alone in each image of `images`: looking at the
 /// centre of the triangles' bounding box along -z (from the +z side, the usual front of an OBJ
-/// model), up +y, from as near as keeps every vertex inside the central `1 - 2 *`
-/// [`FRAMING_MARGIN`] of the image's width and height (README "Camera"). For a turntable,
-/// every angle about the vertical axis through the look point keeps the mesh inside. `None`
-/// when the box is a point (or there are no faces).
-pub fn framing_camera_for(mesh: &Mesh, f: &Framing) -> Option<CameraSpec> {
+/// model), up +y, from as near as keeps every vertex inside each image's margin (README
+/// "Camera"). For a turntable, every angle about the vertical axis through the look point
+/// keeps the mesh inside. `None` when the box is a point (or there are no faces).
+pub fn framing_camera_for(mesh: &Mesh, images: &[Framing]) -> Option<CameraSpec> {
     let each = |visit: &mut dyn FnMut(DVec3)| {
         for &i in mesh.faces.iter().flatten() {
             visit(mesh.vertices[i as usize]);
         }
     };
-    frame_points(each, f)
+    frame_points(each, images)
 }
 
-/// [`framing_camera_for`] the default image ([`Framing::default`]) for any points (the
-/// vertices of primitives of every type, as `scene_from_arrays` gives them).
+/// [`framing_camera`] for any points (the vertices of primitives of every type, as
+/// `scene_from_arrays` gives them).
 pub fn framing_camera_of(points: impl IntoIterator<Item = DVec3>) -> Option<CameraSpec> {
     let points: Vec<DVec3> = points.into_iter().collect();
     frame_points(
         |visit: &mut dyn FnMut(DVec3)| points.iter().for_each(|&p| visit(p)),
-        &Framing::default(),
+        &Framing::DEFAULT,
     )
 }
 
 /// [`framing_camera_for`] for the points `each` visits (twice: the box, then the distance).
-fn frame_points(each: impl Fn(&mut dyn FnMut(DVec3)), f: &Framing) -> Option<CameraSpec> {
+fn frame_points(each: impl Fn(&mut dyn FnMut(DVec3)), images: &[Framing]) -> Option<CameraSpec> {
     let mut lo = DVec3::splat(f64::INFINITY);
     let mut hi = DVec3::splat(f64::NEG_INFINITY);
     each(&mut |v| {
@@ -486,15 +504,17 @@ fn frame_points(each: impl Fn(&mut dyn FnMut(DVec3)), f: &Framing) -> Option<Cam
         return None;
     }
     let look = (lo + hi) / 2.0;
-    // A point p (from the look point) is in the central part of the image when |p.x| <= kx
-    // (d - p.z) and |p.y| <= ky (d - p.z), d the eye's distance along +z: when d >= p.z +
-    // |p.x| / kx and d >= p.z + |p.y| / ky.
-    let fill = 1.0 - 2.0 * FRAMING_MARGIN;
-    let half_w = (f.fov_deg.to_radians() / 2.0).tan();
-    let kx = fill * half_w;
-    let ky = fill * half_w * f.height as f64 / f.width as f64;
-    let need = |p: DVec3| {
-        if f.turntable {
+    // A point p (from the look point) is in an image's central part when |p.x| <= kx (d - p.z)
+    // and |p.y| <= ky (d - p.z), d the eye's distance along +z: when d >= p.z + |p.x| / kx and
+    // d >= p.z + |p.y| / ky.
+    let slopes: Vec<(f64, f64, bool)> = (images.iter())
+        .map(|f| {
+            let kx = (1.0 - 2.0 * f.margin) * (f.fov_deg.to_radians() / 2.0).tan();
+            (kx, kx * f.height as f64 / f.width as f64, f.turntable)
+        })
+        .collect();
+    let need = |p: DVec3, (kx, ky, turntable): (f64, f64, bool)| {
+        if turntable {
             // turned about +y, p.x and p.z take any values with p.x^2 + p.z^2 = rho^2: the
             // largest p.z + |p.x| / kx over the circle is rho * sqrt(1 + 1 / kx^2), and the
             // nearest p.z is rho
@@ -506,7 +526,11 @@ fn frame_points(each: impl Fn(&mut dyn FnMut(DVec3)), f: &Framing) -> Option<Cam
     };
     // never on or behind a point: at least a little in front of the box
     let mut distance = (hi.z - look.z) + 1e-3 * radius;
-    each(&mut |v| distance = distance.max(need(v - look)));
+    each(&mut |v| {
+        for &k in &slopes {
+            distance = distance.max(need(v - look, k));
+        }
+    });
     Some(CameraSpec {
         eye: look + DVec3::Z * distance,
         look,
