@@ -313,7 +313,7 @@ fn out_of_range_values_and_flags_of_the_other_command_are_refused() {
     );
     accepted(&dir, &compare_args(&["--max-mismatch-ppm", "inf"]));
     // compare renders the simd kernel against the oracle with its own colours: the render
-    // command's flags are unknown there
+    // command's flags are refused there, saying why
     for extra in [
         &["--kernel", "scalar"][..],
         &["--seed", "1"],
@@ -324,7 +324,7 @@ fn out_of_range_values_and_flags_of_the_other_command_are_refused() {
         refused(
             &dir,
             &compare_args(extra),
-            &[extra[0], "unexpected argument"],
+            &[extra[0], "applies to the render command"],
         );
     }
     // clap's messages name a single-dash option as it was typed
@@ -340,7 +340,7 @@ fn out_of_range_values_and_flags_of_the_other_command_are_refused() {
     refused(
         &dir,
         &render_args(&["--max-mismatch-ppm", "3"]),
-        &["--max-mismatch-ppm", "unexpected argument"],
+        &["--max-mismatch-ppm: applies to compare only"],
     );
 }
 

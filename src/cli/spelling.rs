@@ -2,7 +2,8 @@
 //! them: a long flag spelled with one dash (`-ids`, which clap reads as `-i ds`), a misspelt
 //! one-dash flag (`-szie`, which clap reports as `-s`), a scene path without `-i`
 //! (`lanecast good.sc`, which clap takes for a subcommand), and a render flag given to
-//! `compare` (which clap calls unexpected, without saying why).
+//! `compare` or compare's flag to the render command (which clap calls unexpected, without
+//! saying why).
 //!
 //! The arguments are walked as clap walks them, from clap's own `Command` (which flags exist,
 //! which take a value), so that a value is never read as a flag: `--eye -1,2,3`, `-o -`.
@@ -37,6 +38,15 @@ pub(super) fn check(args: &[OsString], top: &Command) -> Result<()> {
                 }
                 None if in_compare && find_long(top, name).is_some() => {
                     return Err(render_only(tok, name));
+                }
+                None if !in_compare
+                    && top
+                        .find_subcommand("compare")
+                        .is_some_and(|c| find_long(c, name).is_some()) =>
+                {
+                    return Err(Error::usage(format!(
+                        "{tok}: applies to compare only (lanecast compare -i SCENE {tok} ...)"
+                    )));
                 }
                 None => {}
             }

@@ -279,6 +279,10 @@ fn misreadings_are_named_as_typed_with_what_was_meant() {
             "--seed: applies to the render command",
         ),
         (
+            "-i s.sc --max-mismatch-ppm 3",
+            "--max-mismatch-ppm: applies to compare only",
+        ),
+        (
             "-i s.sc --orbit -3",
             "the number of views on the turntable must be at least 1",
         ),

@@ -74,7 +74,7 @@ impl Ctx<'_> {
     }
 
     /// An error about the statement as a whole (too few numbers, a shape or camera breaking a
-    /// geometric rule), at the column of its first token: README "Scene format", every
+    /// geometric rule), at the column of its first token: README "Scene format (.sc)", every
     /// message has a column.
     pub fn whole(&self, msg: impl Into<String>) -> Error {
         Error::input(self.file, self.line, first_token_col(self.text), msg)
