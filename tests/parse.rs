@@ -142,7 +142,7 @@ fn unknown_keywords() {
 fn wrong_number_counts() {
     rejected_body(
         "sphere 0 0 0",
-        "scene.sc:2: ",
+        "scene.sc:2:1: ",
         &["too few", "expects 4", "got 3"],
     );
     rejected_body(
@@ -150,7 +150,7 @@ fn wrong_number_counts() {
         "scene.sc:2:16:",
         &["too many", "expects 4", "got 5"],
     );
-    rejected_body("sphere", "scene.sc:2: ", &["expects 4", "got 0"]);
+    rejected_body("sphere", "scene.sc:2:1: ", &["expects 4", "got 0"]);
     let tri = "triangle 0 0 0 1 0 0 0 1 0 7";
     rejected(
         &with_cam(tri),
@@ -159,13 +159,13 @@ fn wrong_number_counts() {
     );
     rejected_body(
         "triangle 0 0 0 1 0 0 0 1",
-        "scene.sc:2: ",
+        "scene.sc:2:1: ",
         &["expects 9", "got 8"],
     );
     let quad = "quad 0 0 0 1 0 0 1 1 0 0 1";
     rejected(
         &with_cam(quad),
-        "scene.sc:2: ",
+        "scene.sc:2:1: ",
         &["too few", "expects 12", "got 11"],
     );
     rejected_body(
@@ -288,7 +288,7 @@ fn camera_fov() {
 fn camera_syntax() {
     const C: &str = "camera eye 0 0 5 look 0 0 0 up 0 1 0";
     let cases: [(&str, &str, &[&str]); 13] = [
-        ("camera", "1: ", &["missing 'eye'"]),
+        ("camera", "1:1: ", &["missing 'eye'"]),
         (
             "camera look 0 0 0 eye 0 0 5 up 0 1 0",
             "1:8:",
@@ -316,11 +316,11 @@ fn camera_syntax() {
         ),
         (
             "camera eye 0 0 5 look 0 0 0 up 0 1",
-            "1: ",
+            "1:1: ",
             &["'up' expects 3", "got 2"],
         ),
         (&format!("{C} 2 3"), "1:38:", &["'up' expects 3", "got 5"]),
-        (&format!("{C} fov"), "1: ", &["'fov' expects 1", "got 0"]),
+        (&format!("{C} fov"), "1:1: ", &["'fov' expects 1", "got 0"]),
         (
             &format!("{C} fov 60 70"),
             "1:45:",
@@ -346,7 +346,7 @@ fn line_length_limit() {
     let crlf = format!("{CAM}#{}\r\n", "x".repeat(MAX_LINE_BYTES - 1));
     ok(&crlf);
     let too_long = format!("{CAM}\n#{}\n", "x".repeat(MAX_LINE_BYTES));
-    rejected(&too_long, "scene.sc:3: ", &["line is", "limit"]);
+    rejected(&too_long, "scene.sc:3:1: ", &["line is", "limit"]);
 }
 
 /// Formats vertices to 9 significant digits, as a scene file would hold them.
@@ -374,7 +374,7 @@ fn check_shape(kw: &str, v: &[DVec3], expect: Result<(), &str>) {
         let text = format!("{cam}{}\n", statement(kw, &v));
         match expect {
             Ok(()) => assert_eq!(ok(&text).shapes.len(), 1),
-            Err(word) => drop(rejected(&text, "scene.sc:2: ", &[kw, word])),
+            Err(word) => drop(rejected(&text, "scene.sc:2:1: ", &[kw, word])),
         }
     }
 }
@@ -404,11 +404,11 @@ fn triangle_tolerances() {
     // Written as decimals directly too, not only through formatting.
     rejected_body(
         "triangle 0.1 0.2 0.3 0.2 0.4 0.6 0.3 0.6 0.9",
-        "scene.sc:2: ",
+        "scene.sc:2:1: ",
         &["collinear"],
     );
     let huge = "triangle 0 0 0 1e200 0 0 0 1e200 0";
-    rejected_body(huge, "scene.sc:2: ", &["too large"]);
+    rejected_body(huge, "scene.sc:2:1: ", &["too large"]);
 }
 
 /// A convex, non-parallelogram quad in a tilted plane (size ~2), and the plane's unit normal.
@@ -438,7 +438,7 @@ fn quad_tolerances() {
     let repeated = [d(0., 0., 0.), d(1., 0., 0.), d(0., 1., 0.), d(0., 0., 0.)];
     check_shape("quad", &repeated, Err("same point"));
     let huge = "quad 0 0 0 1e200 0 0 1e200 1e200 0 0 1e200 0";
-    rejected_body(huge, "scene.sc:2: ", &["too large"]);
+    rejected_body(huge, "scene.sc:2:1: ", &["too large"]);
 }
 
 fn temp_path(name: &str) -> PathBuf {
