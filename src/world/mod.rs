@@ -1,0 +1,243 @@
+//! The world engine (`--accel world`): a scene prepared once, independent of any camera, then
+//! rendered from any number of cameras at a cost that follows what each view sees.
+//!
+//! [`World::new`] (once per scene) gathers every primitive into flat, camera-independent arrays:
+//! the polygons' vertices once (a mesh's shared vertices stay shared), each triangle and quad as
+//! vertex indices with its id, the spheres. It holds the scene in an `Arc`, so the prepared
+//! value is owned, `Send + Sync`, and any number of threads and fronts render from it.
+//!
+//! A view ([`World::render`]) works in object order, as a rasteriser does, in four passes:
+//! 1. every vertex made eye-relative (`V - eye` in f64, rounded to f32 once: a vertex shared by
+//!    several polygons is the same f32 vector in each) and projected to pixel coordinates;
+//! 2. each primitive's pixel box, from its projected vertices (or its sphere's box), binned into
+//!    bands of [`BAND`] rows;
+//! 3. each band (on its own thread) sets each of its primitives up in f32 (`setup.rs`: edge
+//!    planes through the eye, the plane, and a written bound on their error) and tests the
+//!    pixel centres in its box, keeping the nearest hit per pixel;
+//! 4. the pixels the f32 answer cannot be trusted at (the bound, below) are decided again in f64
+//!    with the oracle's own constants and kernels (`kernel::polygon`, `kernel::sphere`), among
+//!    every primitive binned there: the oracle's answer there, bit for bit.
+//!
+//! What is trusted: a primitive is *tight* when its f32 distance is within [`T_TIGHT`] relative
+//! of the exact one and its edge planes within [`EDGE_TIGHT`] radians (`setup.rs` derives both
+//! from the primitive's distance to its plane). Two tight primitives that f32 orders wrongly are
+//! within 1e-5 relative in f64 (a tie), a tight depth is within 1e-5, and a tight edge errs
+//! inside the documented boundary band. A pixel where a loose primitive's widened test passes
+//! and its distance could beat the winner's is re-decided; so is every pixel a sphere may cover.
+//! With `Precision::F64` every pixel is decided in f64 (the oracle); with `Precision::F32`
+//! none is.
+//!
+//! A pixel's result depends only on the scene, the camera, the size and the precision: the
+//! nearest-hit rule (smaller t, then lower id) and the re-decision rule (a minimum over every
+//! candidate) do not depend on the order primitives arrive in, nor on the thread count.
+
+mod raster;
+mod setup;
+
+use crate::camera::Camera;
+use crate::frame::Frame;
+use crate::par::prelude::*;
+use crate::scene::{Scene, Shape};
+use glam::DVec3;
+use std::sync::Arc;
+
+/// Rows per band: the unit of binning and of parallel work.
+pub const BAND: usize = 8;
+
+/// Relative distance error below which an f32 hit is trusted (`setup.rs`): twice it stays
+/// under the 1e-5 tie tolerance and it is under the 1e-5 depth guarantee.
+pub const T_TIGHT: f64 = 0.4e-5;
+
+/// Edge-plane error (radians) below which a polygon's f32 inside test is trusted: inside the
+/// boundary band `compare` excuses (`compare::EDGE_BAND`).
+pub const EDGE_TIGHT: f64 = 1.5e-6;
+
+/// How a view is decided.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Precision {
+    /// f32, and f64 where the f32 answer is not trusted (`--precision auto`).
+    Auto,
+    /// f32 alone.
+    F32,
+    /// f64 everywhere: the oracle.
+    F64,
+}
+
+/// A scene prepared once for any camera: see the module comment.
+#[derive(Debug)]
+pub struct World {
+    scene: Arc<Scene>,
+    /// Every polygon vertex, f64, world space.
+    verts: Vec<DVec3>,
+    /// Triangles: vertex indices and ids.
+    tris: Vec<[u32; 3]>,
+    tri_ids: Vec<i32>,
+    /// Quads: vertex indices and ids.
+    quads: Vec<[u32; 4]>,
+    quad_ids: Vec<i32>,
+    /// Spheres: centre, radius, id.
+    spheres: Vec<(DVec3, f64, i32)>,
+}
+
+/// A view's working buffers, reused from view to view ([`World::render_with`]).
+#[derive(Debug, Default)]
+pub struct Scratch {
+    /// Each vertex relative to the eye, rounded to f32.
+    rel: Vec<[f32; 3]>,
+    /// Each vertex's pixel coordinates and depth along the view axis (x, y, z).
+    proj: Vec<[f32; 3]>,
+    /// Per chunk of primitives, per band: the primitives binned there and their pixel boxes.
+    bins: Vec<Vec<Vec<(u32, [u16; 4])>>>,
+}
+
+/// Primitives per binning chunk.
+const CHUNK: usize = 1 << 14;
+
+impl World {
+    /// Prepares `scene` for any camera (in parallel on the current rayon pool).
+    pub fn new(scene: Arc<Scene>) -> World {
+        let mut verts = Vec::new();
+        let (mut tris, mut tri_ids) = (Vec::new(), Vec::new());
+        let (mut quads, mut quad_ids) = (Vec::new(), Vec::new());
+        let mut spheres = Vec::new();
+        let mut id = 0usize;
+        for part in scene.shapes.parts() {
+            match part {
+                crate::scene::PartRef::Mesh(mesh) => {
+                    let base = verts.len() as u32;
+                    verts.extend_from_slice(&mesh.vertices);
+                    tris.par_extend(mesh.faces.par_iter().map(|f| f.map(|v| v + base)));
+                    tri_ids.par_extend((0..mesh.faces.len()).into_par_iter().map(|f| (id + f) as i32));
+                    id += mesh.faces.len();
+                }
+                crate::scene::PartRef::Loose(shapes) => {
+                    for shape in shapes {
+                        match *shape {
+                            Shape::Sphere { center, radius } => {
+                                spheres.push((center, radius, id as i32))
+                            }
+                            Shape::Triangle(v) => {
+                                let b = verts.len() as u32;
+                                verts.extend_from_slice(&v);
+                                tris.push([b, b + 1, b + 2]);
+                                tri_ids.push(id as i32);
+                            }
+                            Shape::Quad(v) => {
+                                let b = verts.len() as u32;
+                                verts.extend_from_slice(&v);
+                                quads.push([b, b + 1, b + 2, b + 3]);
+                                quad_ids.push(id as i32);
+                            }
+                        }
+                        id += 1;
+                    }
+                }
+            }
+        }
+        debug_assert_eq!(id, scene.shapes.len());
+        World {
+            scene,
+            verts,
+            tris,
+            tri_ids,
+            quads,
+            quad_ids,
+            spheres,
+        }
+    }
+
+    /// The scene this was prepared from.
+    pub fn scene(&self) -> &Arc<Scene> {
+        &self.scene
+    }
+
+    /// Bytes held by the prepared arrays (not the scene).
+    pub fn bytes(&self) -> usize {
+        self.verts.len() * 24
+            + self.tris.len() * 16
+            + self.quads.len() * 20
+            + self.spheres.len() * std::mem::size_of::<(DVec3, f64, i32)>()
+    }
+
+    /// Renders one view with fresh working buffers.
+    pub fn render(&self, camera: &Camera, precision: Precision) -> Frame<f32> {
+        self.render_with(camera, precision, &mut Scratch::default())
+    }
+
+    /// Renders one view, reusing `scratch` (any earlier view's): the same frame as
+    /// [`World::render`].
+    pub fn render_with(
+        &self,
+        camera: &Camera,
+        precision: Precision,
+        scratch: &mut Scratch,
+    ) -> Frame<f32> {
+        let t0 = std::time::Instant::now();
+        let view = raster::View::new(camera);
+        self.project(&view, scratch);
+        let t1 = t0.elapsed();
+        self.bin(&view, scratch);
+        let t2 = t0.elapsed();
+        let mut frame = Frame::new(camera.width, camera.height, f32::INFINITY);
+        raster::bands(self, &view, scratch, precision, &mut frame);
+        if std::env::var_os("LANECAST_WORLD_TIMES").is_some() {
+            eprintln!("project {t1:?} bin {:?} bands {:?}", t2 - t1, t0.elapsed() - t2);
+        }
+        frame
+    }
+
+    /// Pass 1: every vertex relative to the eye (f32) and its pixel position.
+    fn project(&self, view: &raster::View, s: &mut Scratch) {
+        let eye = view.eye;
+        s.rel.clear();
+        s.rel.par_extend(self.verts.par_iter().map(|v| {
+            let r = *v - eye;
+            [r.x as f32, r.y as f32, r.z as f32]
+        }));
+        s.proj.clear();
+        s.proj
+            .par_extend(s.rel.par_iter().map(|r| view.project(*r)));
+    }
+
+    /// Pass 2: each primitive's pixel box, binned into bands, chunk by chunk.
+    fn bin(&self, view: &raster::View, s: &mut Scratch) {
+        let total = self.tris.len() + self.quads.len() + self.spheres.len();
+        let chunks = total.div_ceil(CHUNK);
+        let bands = view.bands();
+        s.bins.resize_with(chunks, Vec::new);
+        s.bins.truncate(chunks);
+        let proj = &s.proj;
+        s.bins.par_iter_mut().enumerate().for_each(|(c, bins)| {
+            bins.resize_with(bands, Vec::new);
+            bins.truncate(bands);
+            bins.iter_mut().for_each(Vec::clear);
+            for i in c * CHUNK..((c + 1) * CHUNK).min(total) {
+                if let Some(b) = self.pixel_box(view, proj, i) {
+                    for band in b[2] as usize / BAND..=b[3] as usize / BAND {
+                        bins[band].push((i as u32, b));
+                    }
+                }
+            }
+        });
+    }
+
+    /// Primitive `i`'s pixel box [x0, x1, y0, y1] (inclusive), or `None` when it covers no
+    /// pixel centre's ray in front of the eye. Indices run over triangles, then quads, then
+    /// spheres.
+    #[inline]
+    fn pixel_box(&self, view: &raster::View, proj: &[[f32; 3]], i: usize) -> Option<[u16; 4]> {
+        let nt = self.tris.len();
+        let nq = self.quads.len();
+        if i < nt {
+            view.polygon_box(self.tris[i].map(|v| proj[v as usize]))
+        } else if i < nt + nq {
+            view.polygon_box(self.quads[i - nt].map(|v| proj[v as usize]))
+        } else {
+            let (c, r, _) = self.spheres[i - nt - nq];
+            view.sphere_box(c, r)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,366 @@
+//! A view's pixel work: projection and boxes, then each band's f32 pass and its f64 re-decisions.
+
+use super::setup::{self, Basis, Class, Poly, EPS_MAX};
+use super::{BAND, Precision, Scratch, T_TIGHT, World};
+use crate::camera::{Camera, RayTables};
+use crate::frame::Frame;
+use crate::kernel::Hit;
+use crate::kernel::polygon::{PolyK, polygon_x1};
+use crate::kernel::sphere::{SphereK, sphere_x1};
+use crate::par::prelude::*;
+use glam::DVec3;
+
+/// What every pass of one view reads: the camera, its f32 and f64 ray tables, its basis.
+pub struct View {
+    pub eye: DVec3,
+    w: usize,
+    h: usize,
+    t32: RayTables<f32>,
+    t64: RayTables<f64>,
+    basis: Basis,
+    half_w: f32,
+    half_h: f32,
+    /// Pixels of box margin: the projection's rounding and the widest edge tolerance.
+    margin: f32,
+}
+
+/// Pixels of box margin for the projection's rounding (a few u of the image's size).
+const MARGIN_PX: f64 = 0.01;
+
+/// Cosine (of a vertex's angle to the view axis) below which a polygon is boxed to the whole
+/// image: every pixel ray is within 90 - 0.0006 degrees of the axis for fov < 180 and any
+/// size the limits allow, far from it.
+const NEAR_COS: f32 = 1e-5;
+
+impl View {
+    pub fn new(camera: &Camera) -> View {
+        let t32 = camera.tables::<f32>(1, 1);
+        let t64 = camera.tables::<f64>(1, 1);
+        let lmax = (1.0 + camera.half_w * camera.half_w + camera.half_h * camera.half_h).sqrt();
+        // pixels per radian, at most: d(sx)/d(angle) <= 1 + sx^2 <= lmax^2
+        let px_per_rad = camera.width as f64 / (2.0 * camera.half_w) * lmax * lmax;
+        View {
+            eye: camera.eye,
+            w: camera.width as usize,
+            h: camera.height as usize,
+            basis: Basis {
+                f: t32.f,
+                r: t32.r,
+                u: t32.u,
+                lmax,
+            },
+            t32,
+            t64,
+            half_w: camera.half_w as f32,
+            half_h: camera.half_h as f32,
+            margin: (MARGIN_PX + EPS_MAX * lmax * px_per_rad) as f32,
+        }
+    }
+
+    pub fn bands(&self) -> usize {
+        self.h.div_ceil(BAND)
+    }
+
+    /// A vertex's pixel coordinates and the cosine of its angle to the view axis.
+    #[inline(always)]
+    pub fn project(&self, r: [f32; 3]) -> [f32; 3] {
+        let b = &self.basis;
+        let z = setup::dot(r, b.f);
+        let len = setup::dot(r, r).sqrt();
+        let sx = setup::dot(r, b.r) / z;
+        let sy = setup::dot(r, b.u) / z;
+        let px = (sx / self.half_w + 1.0) * (self.w as f32 * 0.5) - 0.5;
+        let py = (1.0 - sy / self.half_h) * (self.h as f32 * 0.5) - 0.5;
+        [px, py, z / len]
+    }
+
+    fn full(&self) -> [u16; 4] {
+        [0, (self.w - 1) as u16, 0, (self.h - 1) as u16]
+    }
+
+    fn clip(&self, x0: f32, x1: f32, y0: f32, y1: f32) -> Option<[u16; 4]> {
+        let m = self.margin;
+        let (x0, x1) = ((x0 - m).ceil().max(0.0), (x1 + m).floor().min(self.w as f32 - 1.0));
+        let (y0, y1) = ((y0 - m).ceil().max(0.0), (y1 + m).floor().min(self.h as f32 - 1.0));
+        // (NaN fails these)
+        if x0 <= x1 && y0 <= y1 {
+            Some([x0 as u16, x1 as u16, y0 as u16, y1 as u16])
+        } else {
+            None
+        }
+    }
+
+    /// The pixel box of a polygon from its vertices' projections.
+    #[inline(always)]
+    pub fn polygon_box<const N: usize>(&self, p: [[f32; 3]; N]) -> Option<[u16; 4]> {
+        if p.iter().all(|q| q[2] < -NEAR_COS) {
+            return None;
+        }
+        if p.iter().any(|q| !(q[2] > NEAR_COS)) {
+            return Some(self.full());
+        }
+        let (mut x0, mut x1, mut y0, mut y1) = (p[0][0], p[0][0], p[0][1], p[0][1]);
+        for q in &p[1..] {
+            x0 = x0.min(q[0]);
+            x1 = x1.max(q[0]);
+            y0 = y0.min(q[1]);
+            y1 = y1.max(q[1]);
+        }
+        self.clip(x0, x1, y0, y1)
+    }
+
+    /// The pixel box of a sphere: interval bounds on `sx` and `sy` over its bounding cube.
+    pub fn sphere_box(&self, c: DVec3, r: f64) -> Option<[u16; 4]> {
+        let oc = c - self.eye;
+        let (f, rr, u) = (self.t64.f, self.t64.r, self.t64.u);
+        let d = |a: [f64; 3]| oc.x * a[0] + oc.y * a[1] + oc.z * a[2];
+        let (z, x, y) = (d(f), d(rr), d(u));
+        let pad = r * (1.0 + 1e-6) + 1e-9 * oc.length();
+        if z + pad < 0.0 {
+            return None;
+        }
+        if z - pad <= 1e-6 * oc.length() {
+            return Some(self.full());
+        }
+        let (zl, zh) = (z - pad, z + pad);
+        let range = |a: f64| {
+            let (lo, hi) = (a - pad, a + pad);
+            let lo = if lo < 0.0 { lo / zl } else { lo / zh };
+            let hi = if hi > 0.0 { hi / zl } else { hi / zh };
+            (lo, hi)
+        };
+        let (sx0, sx1) = range(x);
+        let (sy0, sy1) = range(y);
+        let (hw, hh) = (self.half_w as f64, self.half_h as f64);
+        let px = |sx: f64| ((sx / hw + 1.0) * self.w as f64 * 0.5 - 0.5) as f32;
+        let py = |sy: f64| ((1.0 - sy / hh) * self.h as f64 * 0.5 - 0.5) as f32;
+        self.clip(px(sx0), px(sx1), py(sy1), py(sy0))
+    }
+}
+
+/// Kinds of primitive index (triangles, then quads, then spheres).
+enum Prim {
+    Tri([u32; 3], i32),
+    Quad([u32; 4], i32),
+    Sphere(DVec3, f64, i32),
+}
+
+impl World {
+    #[inline(always)]
+    fn prim(&self, i: usize) -> Prim {
+        let (nt, nq) = (self.tris.len(), self.quads.len());
+        if i < nt {
+            Prim::Tri(self.tris[i], self.tri_ids[i])
+        } else if i < nt + nq {
+            Prim::Quad(self.quads[i - nt], self.quad_ids[i - nt])
+        } else {
+            let (c, r, id) = self.spheres[i - nt - nq];
+            Prim::Sphere(c, r, id)
+        }
+    }
+}
+
+/// One band's per-pixel state.
+struct Band {
+    x: usize,
+    y0: usize,
+    rows: usize,
+    /// Nearest t' (= t / |v|) so far and its id.
+    t: Vec<f32>,
+    id: Vec<i32>,
+    /// Lowest lower bound of a loose candidate's t'.
+    loose: Vec<f32>,
+    /// Re-decided in f64 whatever the f32 answer.
+    flag: Vec<bool>,
+}
+
+impl Band {
+    #[inline(always)]
+    fn rows(&self, b: [u16; 4]) -> std::ops::Range<usize> {
+        (b[2] as usize).max(self.y0)..(b[3] as usize + 1).min(self.y0 + self.rows)
+    }
+}
+
+/// Passes 3 and 4 over every band, written into `frame`.
+pub fn bands(world: &World, view: &View, s: &Scratch, precision: Precision, frame: &mut Frame<f32>) {
+    let w = view.w;
+    frame
+        .ids
+        .par_chunks_mut(BAND * w)
+        .zip(frame.depth.par_chunks_mut(BAND * w))
+        .enumerate()
+        .for_each(|(b, (ids, depth))| band(world, view, s, precision, b, ids, depth));
+}
+
+fn band(
+    world: &World,
+    view: &View,
+    s: &Scratch,
+    precision: Precision,
+    b: usize,
+    ids: &mut [i32],
+    depth: &mut [f32],
+) {
+    let w = view.w;
+    let rows = ids.len() / w;
+    let n = rows * w;
+    let mut st = Band {
+        x: w,
+        y0: b * BAND,
+        rows,
+        t: vec![f32::INFINITY; n],
+        id: vec![-1; n],
+        loose: vec![f32::INFINITY; n],
+        flag: vec![precision == Precision::F64; n],
+    };
+    let list = || s.bins.iter().flat_map(move |c| c[b].iter().map(|&(i, bx)| (i as usize, bx)));
+    for (i, bx) in list() {
+        match world.prim(i) {
+            Prim::Tri(v, id) => {
+                let k = setup::polygon(v.map(|v| s.rel[v as usize]), &view.basis);
+                raster_polygon(&k, id, bx, view, &mut st);
+            }
+            Prim::Quad(v, id) => {
+                let k = setup::polygon(v.map(|v| s.rel[v as usize]), &view.basis);
+                raster_polygon(&k, id, bx, view, &mut st);
+            }
+            Prim::Sphere(c, r, id) => raster_sphere(c, r, id, bx, view, &mut st),
+        }
+    }
+    // Which pixels the f32 answer is not trusted at.
+    let mut any = false;
+    if precision != Precision::F32 {
+        for k in 0..n {
+            let f = st.flag[k] || st.loose[k] <= st.t[k] * (1.0 + 2.0 * T_TIGHT as f32);
+            st.flag[k] = f;
+            any |= f;
+        }
+    }
+    let mut best = Vec::new();
+    if any {
+        best = vec![Hit::<f64>::NONE; n];
+        for (i, bx) in list() {
+            redecide(world, view, &st, i, bx, &mut best);
+        }
+    }
+    for y in 0..rows {
+        let sy = view.t32.sy[st.y0 + y];
+        for x in 0..w {
+            let k = y * w + x;
+            if any && st.flag[k] {
+                ids[k] = best[k].id;
+                depth[k] = best[k].t as f32;
+            } else if st.id[k] >= 0 {
+                let sx = view.t32.sx[x];
+                ids[k] = st.id[k];
+                depth[k] = st.t[k] * (1.0 + sx * sx + sy * sy).sqrt();
+            }
+        }
+    }
+}
+
+#[inline(always)]
+fn raster_polygon<const N: usize>(k: &Poly<N>, id: i32, bx: [u16; 4], view: &View, st: &mut Band) {
+    let (x0, x1) = (bx[0] as usize, bx[1] as usize);
+    for y in st.rows(bx) {
+        let row = (y - st.y0) * st.x;
+        if k.class == Class::Opaque {
+            st.flag[row + x0..=row + x1].fill(true);
+            continue;
+        }
+        let sy = view.t32.sy[y];
+        let ey: [f32; N] = std::array::from_fn(|i| k.e[i][0] + sy * k.e[i][2]);
+        let dy = k.den[0] + sy * k.den[2];
+        for x in x0..=x1 {
+            let sx = view.t32.sx[x];
+            let mut inside = true;
+            for i in 0..N {
+                inside &= ey[i] + sx * k.e[i][1] >= -k.eps;
+            }
+            if !inside {
+                continue;
+            }
+            let j = row + x;
+            let den = dy + sx * k.den[1];
+            if !(den > 0.0) {
+                if k.class == Class::Loose {
+                    st.loose[j] = 0.0;
+                }
+                continue;
+            }
+            let t = k.p / den;
+            if k.class == Class::Loose {
+                st.loose[j] = st.loose[j].min(t * k.lower);
+            }
+            if t < st.t[j] || (t == st.t[j] && id < st.id[j]) {
+                st.t[j] = t;
+                st.id[j] = id;
+            }
+        }
+    }
+}
+
+fn raster_sphere(c: DVec3, r: f64, id: i32, bx: [u16; 4], view: &View, st: &mut Band) {
+    let k = SphereK::new(c, r, view.eye).cast::<f32>();
+    let (x0, x1) = (bx[0] as usize, bx[1] as usize);
+    for y in st.rows(bx) {
+        let row = (y - st.y0) * st.x;
+        let sy = view.t32.sy[y];
+        for x in x0..=x1 {
+            let j = row + x;
+            st.flag[j] = true;
+            if let Some(t) = sphere_x1(&k, view.t32.dir_x1(x, y)) {
+                let sx = view.t32.sx[x];
+                let t = t / (1.0 + sx * sx + sy * sy).sqrt();
+                if t < st.t[j] || (t == st.t[j] && id < st.id[j]) {
+                    st.t[j] = t;
+                    st.id[j] = id;
+                }
+            }
+        }
+    }
+}
+
+/// Pass 4 for primitive `i`: the oracle's test at each flagged pixel of its box.
+fn redecide(world: &World, view: &View, st: &Band, i: usize, bx: [u16; 4], best: &mut [Hit<f64>]) {
+    let (x0, x1) = (bx[0] as usize, bx[1] as usize);
+    let rows = st.rows(bx);
+    let flagged = rows
+        .clone()
+        .any(|y| st.flag[(y - st.y0) * st.x + x0..=(y - st.y0) * st.x + x1].contains(&true));
+    if !flagged {
+        return;
+    }
+    let verts = |v: &[u32]| -> Vec<DVec3> { v.iter().map(|&v| world.verts[v as usize]).collect() };
+    let mut each = |test: &dyn Fn([f64; 3]) -> Option<f64>, id: i32| {
+        for y in rows.clone() {
+            let row = (y - st.y0) * st.x;
+            for x in x0..=x1 {
+                if st.flag[row + x]
+                    && let Some(t) = test(view.t64.dir_x1(x, y))
+                {
+                    best[row + x].update(t, id);
+                }
+            }
+        }
+    };
+    match world.prim(i) {
+        Prim::Tri(v, id) => {
+            let v = verts(&v);
+            if let Some(k) = PolyK::triangle(&[v[0], v[1], v[2]], view.eye) {
+                each(&|d| polygon_x1(&k, d), id);
+            }
+        }
+        Prim::Quad(v, id) => {
+            let v = verts(&v);
+            if let Some(k) = PolyK::quad(&[v[0], v[1], v[2], v[3]], view.eye) {
+                each(&|d| polygon_x1(&k, d), id);
+            }
+        }
+        Prim::Sphere(c, r, id) => {
+            let k = SphereK::new(c, r, view.eye);
+            each(&|d| sphere_x1(&k, d), id);
+        }
+    }
+}
+
