@@ -10,7 +10,10 @@ use std::time::Instant;
 
 fn main() {
     let a: Vec<String> = std::env::args().collect();
-    let (w, h) = a[2].split_once('x').map(|(w, h)| (w.parse().unwrap(), h.parse().unwrap())).unwrap();
+    let (w, h) = a[2]
+        .split_once('x')
+        .map(|(w, h)| (w.parse().unwrap(), h.parse().unwrap()))
+        .unwrap();
     let n: usize = a[3].parse().unwrap();
     let precision = match a.get(4).map(String::as_str) {
         Some("f32") => Precision::F32,
@@ -21,9 +24,13 @@ fn main() {
     let scene = Arc::new(load_scene(std::path::Path::new(&a[1])).unwrap());
     let load = t.elapsed().as_secs_f64() * 1e3;
     let t = Instant::now();
-    let world = World::new(scene.clone());
+    let world = World::new(&scene);
     let prep = t.elapsed().as_secs_f64() * 1e3;
-    println!("load {load:.1} ms, prepare {prep:.1} ms, {} prims, {} MB prepared", scene.shapes.len(), world.bytes() >> 20);
+    println!(
+        "load {load:.1} ms, prepare {prep:.1} ms, {} prims, {} MB prepared",
+        scene.shapes.len(),
+        world.bytes() >> 20
+    );
     let mut scratch = Scratch::default();
     let mut times = Vec::new();
     let check = std::env::var("CHECK").unwrap_or_default();
@@ -42,5 +49,9 @@ fn main() {
     }
     let total: f64 = times.iter().sum();
     times.sort_by(f64::total_cmp);
-    println!("views {n}: median {:.1} ms, total {:.1} ms", times[times.len() / 2], total);
+    println!(
+        "views {n}: median {:.1} ms, total {:.1} ms",
+        times[times.len() / 2],
+        total
+    );
 }

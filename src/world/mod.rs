@@ -3,8 +3,9 @@
 //!
 //! [`World::new`] (once per scene) gathers every primitive into flat, camera-independent arrays:
 //! the polygons' vertices once (a mesh's shared vertices stay shared), each triangle and quad as
-//! vertex indices with its id, the spheres. It holds the scene in an `Arc`, so the prepared
-//! value is owned, `Send + Sync`, and any number of threads and fronts render from it.
+//! vertex indices with its id, the spheres. It owns its arrays (it borrows nothing from the
+//! scene), so it is `Send + Sync` and shared in an `Arc` by any number of threads, views and
+//! fronts.
 //!
 //! A view ([`World::render`]) works in object order, as a rasteriser does, in four passes:
 //! 1. every vertex made eye-relative (`V - eye` in f64, rounded to f32 once: a vertex shared by
@@ -39,7 +40,6 @@ use crate::frame::Frame;
 use crate::par::prelude::*;
 use crate::scene::{Scene, Shape};
 use glam::DVec3;
-use std::sync::Arc;
 
 /// Rows per band: the unit of binning and of parallel work.
 pub const BAND: usize = 8;
@@ -66,7 +66,6 @@ pub enum Precision {
 /// A scene prepared once for any camera: see the module comment.
 #[derive(Debug)]
 pub struct World {
-    scene: Arc<Scene>,
     /// Every polygon vertex, f64, world space.
     verts: Vec<DVec3>,
     /// Triangles: vertex indices and ids.
@@ -95,7 +94,7 @@ const CHUNK: usize = 1 << 14;
 
 impl World {
     /// Prepares `scene` for any camera (in parallel on the current rayon pool).
-    pub fn new(scene: Arc<Scene>) -> World {
+    pub fn new(scene: &Scene) -> World {
         let mut verts = Vec::new();
         let (mut tris, mut tri_ids) = (Vec::new(), Vec::new());
         let (mut quads, mut quad_ids) = (Vec::new(), Vec::new());
@@ -107,7 +106,11 @@ impl World {
                     let base = verts.len() as u32;
                     verts.extend_from_slice(&mesh.vertices);
                     tris.par_extend(mesh.faces.par_iter().map(|f| f.map(|v| v + base)));
-                    tri_ids.par_extend((0..mesh.faces.len()).into_par_iter().map(|f| (id + f) as i32));
+                    tri_ids.par_extend(
+                        (0..mesh.faces.len())
+                            .into_par_iter()
+                            .map(|f| (id + f) as i32),
+                    );
                     id += mesh.faces.len();
                 }
                 crate::scene::PartRef::Loose(shapes) => {
@@ -136,7 +139,6 @@ impl World {
         }
         debug_assert_eq!(id, scene.shapes.len());
         World {
-            scene,
             verts,
             tris,
             tri_ids,
@@ -144,11 +146,6 @@ impl World {
             quad_ids,
             spheres,
         }
-    }
-
-    /// The scene this was prepared from.
-    pub fn scene(&self) -> &Arc<Scene> {
-        &self.scene
     }
 
     /// Bytes held by the prepared arrays (not the scene).
@@ -172,18 +169,24 @@ impl World {
         precision: Precision,
         scratch: &mut Scratch,
     ) -> Frame<f32> {
-        let t0 = std::time::Instant::now();
+        self.render_marking(camera, precision, scratch, None).0
+    }
+
+    /// [`World::render_with`], also giving the pixels decided in f64 (row-major, ascending),
+    /// and filling `spare`'s buffers when it has the camera's size.
+    pub fn render_marking(
+        &self,
+        camera: &Camera,
+        precision: Precision,
+        scratch: &mut Scratch,
+        spare: Option<Frame<f32>>,
+    ) -> (Frame<f32>, Vec<usize>) {
         let view = raster::View::new(camera);
         self.project(&view, scratch);
-        let t1 = t0.elapsed();
         self.bin(&view, scratch);
-        let t2 = t0.elapsed();
-        let mut frame = Frame::new(camera.width, camera.height, f32::INFINITY);
-        raster::bands(self, &view, scratch, precision, &mut frame);
-        if std::env::var_os("LANECAST_WORLD_TIMES").is_some() {
-            eprintln!("project {t1:?} bin {:?} bands {:?}", t2 - t1, t0.elapsed() - t2);
-        }
-        frame
+        let mut frame = Frame::reuse(spare, camera.width, camera.height, f32::INFINITY);
+        let redone = raster::bands(self, &view, scratch, precision, &mut frame);
+        (frame, redone)
     }
 
     /// Pass 1: every vertex relative to the eye (f32) and its pixel position.

@@ -1,6 +1,6 @@
 //! A view's pixel work: projection and boxes, then each band's f32 pass and its f64 re-decisions.
 
-use super::setup::{self, Basis, Class, Poly, EPS_MAX};
+use super::setup::{self, Basis, Class, EPS_MAX, Poly};
 use super::{BAND, Precision, Scratch, T_TIGHT, World};
 use crate::camera::{Camera, RayTables};
 use crate::frame::Frame;
@@ -80,8 +80,14 @@ impl View {
 
     fn clip(&self, x0: f32, x1: f32, y0: f32, y1: f32) -> Option<[u16; 4]> {
         let m = self.margin;
-        let (x0, x1) = ((x0 - m).ceil().max(0.0), (x1 + m).floor().min(self.w as f32 - 1.0));
-        let (y0, y1) = ((y0 - m).ceil().max(0.0), (y1 + m).floor().min(self.h as f32 - 1.0));
+        let (x0, x1) = (
+            (x0 - m).ceil().max(0.0),
+            (x1 + m).floor().min(self.w as f32 - 1.0),
+        );
+        let (y0, y1) = (
+            (y0 - m).ceil().max(0.0),
+            (y1 + m).floor().min(self.h as f32 - 1.0),
+        );
         // (NaN fails these)
         if x0 <= x1 && y0 <= y1 {
             Some([x0 as u16, x1 as u16, y0 as u16, y1 as u16])
@@ -181,15 +187,24 @@ impl Band {
     }
 }
 
-/// Passes 3 and 4 over every band, written into `frame`.
-pub fn bands(world: &World, view: &View, s: &Scratch, precision: Precision, frame: &mut Frame<f32>) {
+/// Passes 3 and 4 over every band, written into `frame` (every pixel: a reused frame's old
+/// values do not show through); the pixels decided in f64, ascending.
+pub fn bands(
+    world: &World,
+    view: &View,
+    s: &Scratch,
+    precision: Precision,
+    frame: &mut Frame<f32>,
+) -> Vec<usize> {
     let w = view.w;
-    frame
+    let redone: Vec<Vec<usize>> = frame
         .ids
         .par_chunks_mut(BAND * w)
         .zip(frame.depth.par_chunks_mut(BAND * w))
         .enumerate()
-        .for_each(|(b, (ids, depth))| band(world, view, s, precision, b, ids, depth));
+        .map(|(b, (ids, depth))| band(world, view, s, precision, b, ids, depth))
+        .collect();
+    redone.concat()
 }
 
 fn band(
@@ -200,7 +215,7 @@ fn band(
     b: usize,
     ids: &mut [i32],
     depth: &mut [f32],
-) {
+) -> Vec<usize> {
     let w = view.w;
     let rows = ids.len() / w;
     let n = rows * w;
@@ -213,7 +228,11 @@ fn band(
         loose: vec![f32::INFINITY; n],
         flag: vec![precision == Precision::F64; n],
     };
-    let list = || s.bins.iter().flat_map(move |c| c[b].iter().map(|&(i, bx)| (i as usize, bx)));
+    let list = || {
+        s.bins
+            .iter()
+            .flat_map(move |c| c[b].iter().map(|&(i, bx)| (i as usize, bx)))
+    };
     for (i, bx) in list() {
         match world.prim(i) {
             Prim::Tri(v, id) => {
@@ -231,7 +250,9 @@ fn band(
     let mut any = false;
     if precision != Precision::F32 {
         for k in 0..n {
-            let f = st.flag[k] || st.loose[k] <= st.t[k] * (1.0 + 2.0 * T_TIGHT as f32);
+            let l = st.loose[k];
+            let f =
+                st.flag[k] || (l < f32::INFINITY && l <= st.t[k] * (1.0 + 2.0 * T_TIGHT as f32));
             st.flag[k] = f;
             any |= f;
         }
@@ -243,6 +264,7 @@ fn band(
             redecide(world, view, &st, i, bx, &mut best);
         }
     }
+    let mut redone = Vec::new();
     for y in 0..rows {
         let sy = view.t32.sy[st.y0 + y];
         for x in 0..w {
@@ -250,13 +272,18 @@ fn band(
             if any && st.flag[k] {
                 ids[k] = best[k].id;
                 depth[k] = best[k].t as f32;
+                redone.push(st.y0 * w + k);
             } else if st.id[k] >= 0 {
                 let sx = view.t32.sx[x];
                 ids[k] = st.id[k];
                 depth[k] = st.t[k] * (1.0 + sx * sx + sy * sy).sqrt();
+            } else {
+                ids[k] = -1;
+                depth[k] = f32::INFINITY;
             }
         }
     }
+    redone
 }
 
 #[inline(always)]
@@ -363,4 +390,3 @@ fn redecide(world: &World, view: &View, st: &Band, i: usize, bx: [u16; 4], best:
         }
     }
 }
-

@@ -13,7 +13,7 @@ const H: u32 = 120;
 
 fn world_check(name: &str, scene: Scene, precision: Precision) {
     let scene = Arc::new(scene);
-    let world = World::new(scene.clone());
+    let world = World::new(&scene);
     let cam = camera_of(&scene, W, H);
     let frame = world.render(&cam, precision);
     let (r, oracle) = lanecast::compare::compare_frame(&scene, &cam, &frame);
@@ -47,7 +47,11 @@ fn random_world(kind: &str, make: impl Fn(&mut Rng) -> Vec<Shape>) {
         for precision in [Precision::Auto, Precision::F64, Precision::F32] {
             world_check(&format!("{kind} #{seed}"), scene.clone(), precision);
         }
-        world_check(&format!("{kind} #{seed} far"), translated(&scene, FAR), Precision::Auto);
+        world_check(
+            &format!("{kind} #{seed} far"),
+            translated(&scene, FAR),
+            Precision::Auto,
+        );
     }
 }
 
@@ -92,8 +96,12 @@ fn world_closed_mesh_has_no_holes() {
         let tris = icosphere(DVec3::ZERO, 2.0, 3);
         let spec = random_camera(&mut rng);
         let scene = build_scene(&format!("ico{i}.sc"), spec, &triangles(&tris));
-        let scene = Arc::new(if i % 2 == 1 { translated(&scene, FAR) } else { scene });
-        let world = World::new(scene.clone());
+        let scene = Arc::new(if i % 2 == 1 {
+            translated(&scene, FAR)
+        } else {
+            scene
+        });
+        let world = World::new(&scene);
         let cam = camera_of(&scene, W, H);
         let frame = world.render(&cam, Precision::F32);
         let (_, oracle) = lanecast::compare::compare_frame(&scene, &cam, &frame);
@@ -113,19 +121,32 @@ fn world_views_depend_on_their_camera_alone() {
     shapes.extend(random_spheres(&mut rng, 5));
     shapes.extend(random_quads(&mut rng, 20));
     let scene = Arc::new(build_scene("views.sc", random_camera(&mut rng), &shapes));
-    let world = World::new(scene.clone());
+    let world = World::new(&scene);
     let cams: Vec<Camera> = (0..5)
         .map(|_| Camera::look_at(&random_camera(&mut rng), W, H).unwrap())
         .collect();
-    let alone: Vec<_> = cams.iter().map(|c| world.render(c, Precision::Auto)).collect();
+    let alone: Vec<_> = cams
+        .iter()
+        .map(|c| world.render(c, Precision::Auto))
+        .collect();
     let mut scratch = Scratch::default();
     for &i in &[4usize, 2, 0, 3, 1, 2] {
-        assert_eq!(world.render_with(&cams[i], Precision::Auto, &mut scratch), alone[i]);
+        assert_eq!(
+            world.render_with(&cams[i], Precision::Auto, &mut scratch),
+            alone[i]
+        );
     }
     for threads in [1, 3] {
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
         for (c, a) in cams.iter().zip(&alone) {
-            assert_eq!(&pool.install(|| world.render(c, Precision::Auto)), a, "{threads} threads");
+            assert_eq!(
+                &pool.install(|| world.render(c, Precision::Auto)),
+                a,
+                "{threads} threads"
+            );
         }
     }
 }
