@@ -206,6 +206,10 @@ impl<'s> Renderer<'s> {
         camera: &crate::camera::Camera,
         accel: Accel,
     ) -> Renderer<'s> {
+        if accel == Accel::World {
+            let world = Arc::new(World::new(scene));
+            return Renderer::of_world(world, camera, &Options::default(), Spare::default());
+        }
         Renderer::auto_in(scene, camera, accel, Spare::default(), None)
     }
 

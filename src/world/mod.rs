@@ -10,11 +10,17 @@
 //! A view ([`World::render`]) works in object order, as a rasteriser does, in four passes:
 //! 1. every vertex made eye-relative (`V - eye` in f64, rounded to f32 once: a vertex shared by
 //!    several polygons is the same f32 vector in each) and projected to pixel coordinates;
-//! 2. each primitive's pixel box, from its projected vertices (or its sphere's box), binned into
-//!    bands of [`BAND`] rows;
-//! 3. each band (on its own thread) sets each of its primitives up in f32 (`setup.rs`: edge
-//!    planes through the eye, the plane, and a written bound on their error) and tests the
-//!    pixel centres in its box, keeping the nearest hit per pixel;
+//! 2. each cluster of up to 64 polygons (`clusters.rs`) and each sphere binned into bands of
+//!    [`BAND`] rows by its bounding sphere's pixel box; a cluster whose polygons all face away
+//!    from the eye is *deferred*;
+//! 3. each band (on its own thread) takes its clusters' polygons one by one: the pixel centres
+//!    inside its projected outline (a 2D test in pixel coordinates, with a margin wider than
+//!    every error of the projection and of the edge tolerance, so it only leaves out pixels
+//!    the exact test would reject), then its f32 setup (`setup.rs`: edge planes through the
+//!    eye, the plane, and a written bound on their error) and the exact test at those pixels,
+//!    keeping the nearest hit per pixel. A deferred cluster is then rendered only where the
+//!    band cannot prove it hidden: every pixel of its box already holds a trusted hit nearer
+//!    than the cluster's nearest point (on a closed mesh, the back faces);
 //! 4. the pixels the f32 answer cannot be trusted at (the bound, below) are decided again in f64
 //!    with the oracle's own constants and kernels (`kernel::polygon`, `kernel::sphere`), among
 //!    every primitive binned there: the oracle's answer there, bit for bit.
@@ -32,6 +38,7 @@
 //! nearest-hit rule (smaller t, then lower id) and the re-decision rule (a minimum over every
 //! candidate) do not depend on the order primitives arrive in, nor on the thread count.
 
+mod clusters;
 mod raster;
 mod setup;
 
@@ -39,6 +46,7 @@ use crate::camera::Camera;
 use crate::frame::Frame;
 use crate::par::prelude::*;
 use crate::scene::{Scene, Shape};
+use clusters::Cluster;
 use glam::DVec3;
 
 /// Rows per band: the unit of binning and of parallel work.
@@ -76,6 +84,9 @@ pub struct World {
     quad_ids: Vec<i32>,
     /// Spheres: centre, radius, id.
     spheres: Vec<(DVec3, f64, i32)>,
+    /// Clusters of consecutive triangles, then of quads (`clusters.rs`).
+    tri_clusters: Vec<Cluster>,
+    quad_clusters: Vec<Cluster>,
 }
 
 /// A view's working buffers, reused from view to view ([`World::render_with`]).
@@ -83,14 +94,23 @@ pub struct World {
 pub struct Scratch {
     /// Each vertex relative to the eye, rounded to f32.
     rel: Vec<[f32; 3]>,
-    /// Each vertex's pixel coordinates and depth along the view axis (x, y, z).
+    /// Each vertex's pixel coordinates and the cosine of its angle to the view axis.
     proj: Vec<[f32; 3]>,
-    /// Per chunk of primitives, per band: the primitives binned there and their pixel boxes.
-    bins: Vec<Vec<Vec<(u32, [u16; 4])>>>,
+    /// Per chunk of items, per band: the items binned there, front first (`false`) or
+    /// deferred (`true`: a cluster facing away from the eye).
+    bins: Vec<Vec<Vec<(u32, bool)>>>,
 }
 
-/// Primitives per binning chunk.
-const CHUNK: usize = 1 << 14;
+/// Items (clusters, spheres) per binning chunk.
+const CHUNK: usize = 1 << 10;
+
+/// One unit of binning: a cluster of triangles or quads, or a sphere.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Item {
+    Tris(Cluster),
+    Quads(Cluster),
+    Sphere(DVec3, f64, i32),
+}
 
 impl World {
     /// Prepares `scene` for any camera (in parallel on the current rayon pool).
@@ -106,10 +126,11 @@ impl World {
                     let base = verts.len() as u32;
                     verts.extend_from_slice(&mesh.vertices);
                     tris.par_extend(mesh.faces.par_iter().map(|f| f.map(|v| v + base)));
+                    let first = id;
                     tri_ids.par_extend(
                         (0..mesh.faces.len())
                             .into_par_iter()
-                            .map(|f| (id + f) as i32),
+                            .map(|f| (first + f) as i32),
                     );
                     id += mesh.faces.len();
                 }
@@ -138,6 +159,8 @@ impl World {
             }
         }
         debug_assert_eq!(id, scene.shapes.len());
+        let tri_clusters = clusters::build(&verts, &tris);
+        let quad_clusters = clusters::build(&verts, &quads);
         World {
             verts,
             tris,
@@ -145,15 +168,18 @@ impl World {
             quads,
             quad_ids,
             spheres,
+            tri_clusters,
+            quad_clusters,
         }
     }
 
-    /// Bytes held by the prepared arrays (not the scene).
+    /// Bytes held by the prepared arrays.
     pub fn bytes(&self) -> usize {
         self.verts.len() * 24
             + self.tris.len() * 16
             + self.quads.len() * 20
             + self.spheres.len() * std::mem::size_of::<(DVec3, f64, i32)>()
+            + (self.tri_clusters.len() + self.quad_clusters.len()) * std::mem::size_of::<Cluster>()
     }
 
     /// Renders one view with fresh working buffers.
@@ -202,43 +228,50 @@ impl World {
             .par_extend(s.rel.par_iter().map(|r| view.project(*r)));
     }
 
-    /// Pass 2: each primitive's pixel box, binned into bands, chunk by chunk.
+    fn items(&self) -> usize {
+        self.tri_clusters.len() + self.quad_clusters.len() + self.spheres.len()
+    }
+
+    /// Item `i`: triangle clusters, then quad clusters, then spheres.
+    #[inline]
+    pub(crate) fn item(&self, i: usize) -> Item {
+        let (ct, cq) = (self.tri_clusters.len(), self.quad_clusters.len());
+        if i < ct {
+            Item::Tris(self.tri_clusters[i])
+        } else if i < ct + cq {
+            Item::Quads(self.quad_clusters[i - ct])
+        } else {
+            let (c, r, id) = self.spheres[i - ct - cq];
+            Item::Sphere(c, r, id)
+        }
+    }
+
+    /// Pass 2: each item's pixel box (its bounding sphere's), binned into bands, chunk by
+    /// chunk; clusters facing away from the eye binned as deferred.
     fn bin(&self, view: &raster::View, s: &mut Scratch) {
-        let total = self.tris.len() + self.quads.len() + self.spheres.len();
+        let total = self.items();
         let chunks = total.div_ceil(CHUNK);
         let bands = view.bands();
         s.bins.resize_with(chunks, Vec::new);
         s.bins.truncate(chunks);
-        let proj = &s.proj;
         s.bins.par_iter_mut().enumerate().for_each(|(c, bins)| {
             bins.resize_with(bands, Vec::new);
             bins.truncate(bands);
             bins.iter_mut().for_each(Vec::clear);
             for i in c * CHUNK..((c + 1) * CHUNK).min(total) {
-                if let Some(b) = self.pixel_box(view, proj, i) {
+                let (b, deferred) = match self.item(i) {
+                    Item::Tris(k) | Item::Quads(k) => {
+                        (view.sphere_box(k.centre, k.radius), k.faces_away(view.eye))
+                    }
+                    Item::Sphere(c, r, _) => (view.sphere_box(c, r), false),
+                };
+                if let Some(b) = b {
                     for band in b[2] as usize / BAND..=b[3] as usize / BAND {
-                        bins[band].push((i as u32, b));
+                        bins[band].push((i as u32, deferred));
                     }
                 }
             }
         });
-    }
-
-    /// Primitive `i`'s pixel box [x0, x1, y0, y1] (inclusive), or `None` when it covers no
-    /// pixel centre's ray in front of the eye. Indices run over triangles, then quads, then
-    /// spheres.
-    #[inline]
-    fn pixel_box(&self, view: &raster::View, proj: &[[f32; 3]], i: usize) -> Option<[u16; 4]> {
-        let nt = self.tris.len();
-        let nq = self.quads.len();
-        if i < nt {
-            view.polygon_box(self.tris[i].map(|v| proj[v as usize]))
-        } else if i < nt + nq {
-            view.polygon_box(self.quads[i - nt].map(|v| proj[v as usize]))
-        } else {
-            let (c, r, _) = self.spheres[i - nt - nq];
-            view.sphere_box(c, r)
-        }
     }
 }
 

@@ -1,7 +1,8 @@
 //! A view's pixel work: projection and boxes, then each band's f32 pass and its f64 re-decisions.
 
+use super::clusters::Cluster;
 use super::setup::{self, Basis, Class, EPS_MAX, Poly};
-use super::{BAND, Precision, Scratch, T_TIGHT, World};
+use super::{BAND, Item, Precision, Scratch, T_TIGHT, World};
 use crate::camera::{Camera, RayTables};
 use crate::frame::Frame;
 use crate::kernel::Hit;
@@ -144,28 +145,6 @@ impl View {
     }
 }
 
-/// Kinds of primitive index (triangles, then quads, then spheres).
-enum Prim {
-    Tri([u32; 3], i32),
-    Quad([u32; 4], i32),
-    Sphere(DVec3, f64, i32),
-}
-
-impl World {
-    #[inline(always)]
-    fn prim(&self, i: usize) -> Prim {
-        let (nt, nq) = (self.tris.len(), self.quads.len());
-        if i < nt {
-            Prim::Tri(self.tris[i], self.tri_ids[i])
-        } else if i < nt + nq {
-            Prim::Quad(self.quads[i - nt], self.quad_ids[i - nt])
-        } else {
-            let (c, r, id) = self.spheres[i - nt - nq];
-            Prim::Sphere(c, r, id)
-        }
-    }
-}
-
 /// One band's per-pixel state.
 struct Band {
     x: usize,
@@ -207,6 +186,17 @@ pub fn bands(
     redone.concat()
 }
 
+/// The polygons of a cluster of kind `N`: their vertex indices and ids.
+#[inline(always)]
+fn members<'w, const N: usize>(
+    polys: &'w [[u32; N]],
+    ids: &'w [i32],
+    k: &Cluster,
+) -> impl Iterator<Item = ([u32; N], i32)> + 'w {
+    let r = k.first as usize..(k.first + k.len) as usize;
+    polys[r.clone()].iter().copied().zip(ids[r].iter().copied())
+}
+
 fn band(
     world: &World,
     view: &View,
@@ -228,22 +218,40 @@ fn band(
         loose: vec![f32::INFINITY; n],
         flag: vec![precision == Precision::F64; n],
     };
-    let list = || {
-        s.bins
-            .iter()
-            .flat_map(move |c| c[b].iter().map(|&(i, bx)| (i as usize, bx)))
+    let list = |deferred: bool| {
+        s.bins.iter().flat_map(move |c| {
+            c[b].iter()
+                .filter(move |e| e.1 == deferred)
+                .map(|e| e.0 as usize)
+        })
     };
-    for (i, bx) in list() {
-        match world.prim(i) {
-            Prim::Tri(v, id) => {
-                let k = setup::polygon(v.map(|v| s.rel[v as usize]), &view.basis);
-                raster_polygon(&k, id, bx, view, &mut st);
+    let render = |st: &mut Band, item: Item| match item {
+        Item::Tris(k) => {
+            for (v, id) in members(&world.tris, &world.tri_ids, &k) {
+                raster_polygon(v, id, view, s, st);
             }
-            Prim::Quad(v, id) => {
-                let k = setup::polygon(v.map(|v| s.rel[v as usize]), &view.basis);
-                raster_polygon(&k, id, bx, view, &mut st);
+        }
+        Item::Quads(k) => {
+            for (v, id) in members(&world.quads, &world.quad_ids, &k) {
+                raster_polygon(v, id, view, s, st);
             }
-            Prim::Sphere(c, r, id) => raster_sphere(c, r, id, bx, view, &mut st),
+        }
+        Item::Sphere(c, r, id) => raster_sphere(c, r, id, view, st),
+    };
+    for i in list(false) {
+        render(&mut st, world.item(i));
+    }
+    // Deferred clusters: rendered unless every pixel of their box holds a trusted hit nearer
+    // than their nearest point.
+    let mut rendered = Vec::new();
+    for i in list(true) {
+        let item = world.item(i);
+        let (Item::Tris(k) | Item::Quads(k)) = item else {
+            unreachable!("only clusters are deferred")
+        };
+        if !hidden(&k, view, &st) {
+            render(&mut st, item);
+            rendered.push(i);
         }
     }
     // Which pixels the f32 answer is not trusted at.
@@ -260,8 +268,25 @@ fn band(
     let mut best = Vec::new();
     if any {
         best = vec![Hit::<f64>::NONE; n];
-        for (i, bx) in list() {
-            redecide(world, view, &st, i, bx, &mut best);
+        for i in list(false).chain(rendered.iter().copied()) {
+            match world.item(i) {
+                Item::Tris(k) => {
+                    for (v, id) in members(&world.tris, &world.tri_ids, &k) {
+                        redecide_polygon(world, v, id, view, s, &st, &mut best);
+                    }
+                }
+                Item::Quads(k) => {
+                    for (v, id) in members(&world.quads, &world.quad_ids, &k) {
+                        redecide_polygon(world, v, id, view, s, &st, &mut best);
+                    }
+                }
+                Item::Sphere(c, r, id) => {
+                    if let Some(bx) = view.sphere_box(c, r) {
+                        let k = SphereK::new(c, r, view.eye);
+                        redecide_box(bx, id, view, &st, &mut best, |d| sphere_x1(&k, d));
+                    }
+                }
+            }
         }
     }
     let mut redone = Vec::new();
@@ -286,48 +311,173 @@ fn band(
     redone
 }
 
-#[inline(always)]
-fn raster_polygon<const N: usize>(k: &Poly<N>, id: i32, bx: [u16; 4], view: &View, st: &mut Band) {
-    let (x0, x1) = (bx[0] as usize, bx[1] as usize);
+/// Whether cluster `k` is proven hidden in this band: every pixel of its box (in the band)
+/// holds a trusted f32 hit (tight, no loose candidate, not flagged) whose distance, with its
+/// error bound, is below the cluster's nearest point. Then no primitive of the cluster can be
+/// the nearest there, in f32 or in f64.
+fn hidden(k: &Cluster, view: &View, st: &Band) -> bool {
+    let Some(bx) = view.sphere_box(k.centre, k.radius) else {
+        return true;
+    };
+    let near = k.nearest(view.eye);
     for y in st.rows(bx) {
         let row = (y - st.y0) * st.x;
-        if k.class == Class::Opaque {
-            st.flag[row + x0..=row + x1].fill(true);
-            continue;
-        }
-        let sy = view.t32.sy[y];
-        let ey: [f32; N] = std::array::from_fn(|i| k.e[i][0] + sy * k.e[i][2]);
-        let dy = k.den[0] + sy * k.den[2];
-        for x in x0..=x1 {
-            let sx = view.t32.sx[x];
-            let mut inside = true;
-            for i in 0..N {
-                inside &= ey[i] + sx * k.e[i][1] >= -k.eps;
-            }
-            if !inside {
-                continue;
-            }
+        let sy = view.t32.sy[y] as f64;
+        for x in bx[0] as usize..=bx[1] as usize {
             let j = row + x;
-            let den = dy + sx * k.den[1];
-            if !(den > 0.0) {
-                if k.class == Class::Loose {
-                    st.loose[j] = 0.0;
+            if st.id[j] < 0 || st.flag[j] || st.loose[j] < f32::INFINITY {
+                return false;
+            }
+            let sx = view.t32.sx[x] as f64;
+            let t = st.t[j] as f64 * (1.0 + sx * sx + sy * sy).sqrt();
+            if !(t * (1.0 + 4.0 * T_TIGHT) < near) {
+                return false;
+            }
+        }
+    }
+    true
+}
+
+/// Pixels a polygon's box may hold before the 2D outline test is skipped (the exact test
+/// then runs at every pixel of the box).
+const OUTLINE_MAX: usize = 64;
+
+/// The pixels of the band inside polygon `p`'s projected outline, widened by `margin` pixels
+/// (plus the projection's own rounding), as offsets into the band; `None` when the outline
+/// test does not apply (a vertex near or behind the eye plane, a box past [`OUTLINE_MAX`]
+/// pixels, an outline of no area).
+#[inline(always)]
+fn outline<const N: usize>(
+    p: &[[f32; 3]; N],
+    bx: [u16; 4],
+    view: &View,
+    st: &Band,
+    out: &mut [u32; OUTLINE_MAX],
+) -> Option<usize> {
+    let rows = st.rows(bx);
+    let (x0, x1) = (bx[0] as usize, bx[1] as usize);
+    if rows.len() * (x1 + 1 - x0) > OUTLINE_MAX || p.iter().any(|q| !(q[2] > NEAR_COS)) {
+        return None;
+    }
+    let area = if N == 3 {
+        (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0])
+    } else {
+        (p[2][0] - p[0][0]) * (p[3][1] - p[1][1]) - (p[2][1] - p[0][1]) * (p[3][0] - p[1][0])
+    };
+    if !(area != 0.0 && area.is_finite()) {
+        return None;
+    }
+    let sign = if area > 0.0 { 1.0f32 } else { -1.0 };
+    let big = p
+        .iter()
+        .fold(0.0f32, |m, q| m.max(q[0].abs()).max(q[1].abs()));
+    let margin = view.margin + OUTLINE_REL * (big + (view.w + view.h) as f32);
+    let edges: [[f32; 5]; N] = std::array::from_fn(|i| {
+        let (a, b) = (p[i], p[(i + 1) % N]);
+        let (dx, dy) = ((b[0] - a[0]) * sign, (b[1] - a[1]) * sign);
+        [dx, dy, a[0], a[1], -margin * (dx.abs() + dy.abs())]
+    });
+    let mut n = 0;
+    for y in rows {
+        let fy = y as f32;
+        let row = (y - st.y0) * st.x;
+        for x in x0..=x1 {
+            let fx = x as f32;
+            let inside = edges
+                .iter()
+                .all(|e| e[0] * (fy - e[3]) - e[1] * (fx - e[2]) >= e[4]);
+            if inside {
+                out[n] = (row + x) as u32;
+                n += 1;
+            }
+        }
+    }
+    Some(n)
+}
+
+/// The 2D outline test's allowance for the projection's rounding, relative to the largest
+/// pixel coordinate involved: about 30u, each coordinate having passed through a dozen f32
+/// operations.
+const OUTLINE_REL: f32 = 2e-6;
+
+#[inline(always)]
+fn raster_polygon<const N: usize>(v: [u32; N], id: i32, view: &View, s: &Scratch, st: &mut Band) {
+    let p = v.map(|i| s.proj[i as usize]);
+    let Some(bx) = view.polygon_box(p) else {
+        return;
+    };
+    if st.rows(bx).is_empty() {
+        return;
+    }
+    let mut cand = [0u32; OUTLINE_MAX];
+    let picked = outline(&p, bx, view, st, &mut cand);
+    if picked == Some(0) {
+        return;
+    }
+    let k = setup::polygon(v.map(|i| s.rel[i as usize]), &view.basis);
+    match picked {
+        Some(n) => {
+            for &j in &cand[..n] {
+                let j = j as usize;
+                let (x, y) = (j % st.x, st.y0 + j / st.x);
+                test_polygon(&k, id, x, y, j, view, st);
+            }
+        }
+        None => {
+            for y in st.rows(bx) {
+                let row = (y - st.y0) * st.x;
+                for x in bx[0] as usize..=bx[1] as usize {
+                    test_polygon(&k, id, x, y, row + x, view, st);
                 }
-                continue;
-            }
-            let t = k.p / den;
-            if k.class == Class::Loose {
-                st.loose[j] = st.loose[j].min(t * k.lower);
-            }
-            if t < st.t[j] || (t == st.t[j] && id < st.id[j]) {
-                st.t[j] = t;
-                st.id[j] = id;
             }
         }
     }
 }
 
-fn raster_sphere(c: DVec3, r: f64, id: i32, bx: [u16; 4], view: &View, st: &mut Band) {
+/// The f32 test of polygon `k` at pixel (x, y), offset `j` in the band.
+#[inline(always)]
+fn test_polygon<const N: usize>(
+    k: &Poly<N>,
+    id: i32,
+    x: usize,
+    y: usize,
+    j: usize,
+    view: &View,
+    st: &mut Band,
+) {
+    if k.class == Class::Opaque {
+        st.flag[j] = true;
+        return;
+    }
+    let (sx, sy) = (view.t32.sx[x], view.t32.sy[y]);
+    let mut inside = true;
+    for i in 0..N {
+        inside &= (k.e[i][0] + sy * k.e[i][2]) + sx * k.e[i][1] >= -k.eps;
+    }
+    if !inside {
+        return;
+    }
+    let den = (k.den[0] + sy * k.den[2]) + sx * k.den[1];
+    if !(den > 0.0) {
+        if k.class == Class::Loose {
+            st.loose[j] = 0.0;
+        }
+        return;
+    }
+    let t = k.p / den;
+    if k.class == Class::Loose {
+        st.loose[j] = st.loose[j].min(t * k.lower);
+    }
+    if t < st.t[j] || (t == st.t[j] && id < st.id[j]) {
+        st.t[j] = t;
+        st.id[j] = id;
+    }
+}
+
+fn raster_sphere(c: DVec3, r: f64, id: i32, view: &View, st: &mut Band) {
+    let Some(bx) = view.sphere_box(c, r) else {
+        return;
+    };
     let k = SphereK::new(c, r, view.eye).cast::<f32>();
     let (x0, x1) = (bx[0] as usize, bx[1] as usize);
     for y in st.rows(bx) {
@@ -348,45 +498,66 @@ fn raster_sphere(c: DVec3, r: f64, id: i32, bx: [u16; 4], view: &View, st: &mut 
     }
 }
 
-/// Pass 4 for primitive `i`: the oracle's test at each flagged pixel of its box.
-fn redecide(world: &World, view: &View, st: &Band, i: usize, bx: [u16; 4], best: &mut [Hit<f64>]) {
-    let (x0, x1) = (bx[0] as usize, bx[1] as usize);
-    let rows = st.rows(bx);
-    let flagged = rows
-        .clone()
-        .any(|y| st.flag[(y - st.y0) * st.x + x0..=(y - st.y0) * st.x + x1].contains(&true));
-    if !flagged {
+/// Pass 4 for one polygon: the oracle's constants and test at each flagged pixel of its box.
+fn redecide_polygon<const N: usize>(
+    world: &World,
+    v: [u32; N],
+    id: i32,
+    view: &View,
+    s: &Scratch,
+    st: &Band,
+    best: &mut [Hit<f64>],
+) {
+    let Some(bx) = view.polygon_box(v.map(|i| s.proj[i as usize])) else {
+        return;
+    };
+    if !flagged(bx, st) {
         return;
     }
-    let verts = |v: &[u32]| -> Vec<DVec3> { v.iter().map(|&v| world.verts[v as usize]).collect() };
-    let mut each = |test: &dyn Fn([f64; 3]) -> Option<f64>, id: i32| {
-        for y in rows.clone() {
-            let row = (y - st.y0) * st.x;
-            for x in x0..=x1 {
-                if st.flag[row + x]
-                    && let Some(t) = test(view.t64.dir_x1(x, y))
-                {
-                    best[row + x].update(t, id);
-                }
-            }
-        }
+    let w: [DVec3; N] = v.map(|i| world.verts[i as usize]);
+    let k = if N == 3 {
+        PolyK::<f64, 3>::triangle(&[w[0], w[1], w[2]], view.eye).map(|k| Known::Tri(k))
+    } else {
+        PolyK::<f64, 4>::quad(&[w[0], w[1], w[2], w[3]], view.eye).map(|k| Known::Quad(k))
     };
-    match world.prim(i) {
-        Prim::Tri(v, id) => {
-            let v = verts(&v);
-            if let Some(k) = PolyK::triangle(&[v[0], v[1], v[2]], view.eye) {
-                each(&|d| polygon_x1(&k, d), id);
+    match k {
+        Some(Known::Tri(k)) => redecide_box(bx, id, view, st, best, |d| polygon_x1(&k, d)),
+        Some(Known::Quad(k)) => redecide_box(bx, id, view, st, best, |d| polygon_x1(&k, d)),
+        None => {}
+    }
+}
+
+enum Known {
+    Tri(PolyK<f64, 3>),
+    Quad(PolyK<f64, 4>),
+}
+
+fn flagged(bx: [u16; 4], st: &Band) -> bool {
+    let (x0, x1) = (bx[0] as usize, bx[1] as usize);
+    st.rows(bx).any(|y| {
+        let row = (y - st.y0) * st.x;
+        st.flag[row + x0..=row + x1].contains(&true)
+    })
+}
+
+#[inline(always)]
+fn redecide_box(
+    bx: [u16; 4],
+    id: i32,
+    view: &View,
+    st: &Band,
+    best: &mut [Hit<f64>],
+    test: impl Fn([f64; 3]) -> Option<f64>,
+) {
+    let (x0, x1) = (bx[0] as usize, bx[1] as usize);
+    for y in st.rows(bx) {
+        let row = (y - st.y0) * st.x;
+        for x in x0..=x1 {
+            if st.flag[row + x]
+                && let Some(t) = test(view.t64.dir_x1(x, y))
+            {
+                best[row + x].update(t, id);
             }
-        }
-        Prim::Quad(v, id) => {
-            let v = verts(&v);
-            if let Some(k) = PolyK::quad(&[v[0], v[1], v[2], v[3]], view.eye) {
-                each(&|d| polygon_x1(&k, d), id);
-            }
-        }
-        Prim::Sphere(c, r, id) => {
-            let k = SphereK::new(c, r, view.eye);
-            each(&|d| sphere_x1(&k, d), id);
         }
     }
 }

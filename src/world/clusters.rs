@@ -1,0 +1,105 @@
+//! Clusters of up to [`CLUSTER`] consecutive polygons, bounded once per scene: a sphere around
+//! their vertices and a cone around their normals (the mesh's own winding), so that a view
+//! can tell, per cluster, that every polygon in it faces away from the eye.
+//!
+//! Back-facing test (f64): with `w = centre - eye`, the cluster lies within the angle
+//! `beta = asin(radius / |w|)` of `w` seen from the eye, and its normals within `alpha` of
+//! `axis`. Every polygon faces away (`(P - eye) . n > 0` for each of its points P and its
+//! normal n) when the angle between `w` and `axis` plus `alpha + beta` stays below 90
+//! degrees, with [`CONE_SLACK`] radians to spare. Such a cluster is only *deferred*: on an
+//! open mesh a back face can be seen, so the view renders it unless it proves it hidden
+//! (`raster`).
+
+use crate::par::prelude::*;
+use glam::DVec3;
+
+/// Polygons per cluster.
+pub const CLUSTER: usize = 64;
+
+/// Radians kept between the back-facing test's angle sum and 90 degrees.
+pub const CONE_SLACK: f64 = 1e-6;
+
+/// One cluster's polygons and bounds.
+#[derive(Debug, Clone, Copy)]
+pub struct Cluster {
+    /// First polygon (index in its kind's arrays) and count.
+    pub first: u32,
+    pub len: u32,
+    /// Bounding sphere of its vertices.
+    pub centre: DVec3,
+    pub radius: f64,
+    /// Normal cone: unit axis and half-angle (radians; `PI` when the normals span too much,
+    /// or a polygon has no normal, so it never counts as back-facing).
+    pub axis: DVec3,
+    pub alpha: f64,
+}
+
+/// The clusters of `polys` (vertex indices into `verts`), `CLUSTER` consecutive ones each.
+pub fn build<const N: usize>(verts: &[DVec3], polys: &[[u32; N]]) -> Vec<Cluster> {
+    polys
+        .par_chunks(CLUSTER)
+        .enumerate()
+        .map(|(c, chunk)| {
+            let pts = || {
+                chunk
+                    .iter()
+                    .flat_map(|p| p.iter().map(|&v| verts[v as usize]))
+            };
+            let (lo, hi) = pts().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), p| {
+                (l.min(p), h.max(p))
+            });
+            let centre = (lo + hi) * 0.5;
+            let radius = pts().map(|p| (p - centre).length()).fold(0.0, f64::max) * (1.0 + 1e-9);
+            let normals: Vec<Option<DVec3>> = chunk
+                .iter()
+                .map(|p| {
+                    let v = p.map(|i| verts[i as usize]);
+                    let raw = if N == 3 {
+                        (v[1] - v[0]).cross(v[2] - v[0])
+                    } else {
+                        (v[2] - v[0]).cross(v[3] - v[1])
+                    };
+                    raw.try_normalize()
+                })
+                .collect();
+            let (axis, alpha) = match normals.iter().copied().collect::<Option<Vec<_>>>() {
+                Some(ns) => match ns.iter().sum::<DVec3>().try_normalize() {
+                    Some(axis) => {
+                        let cos = ns.iter().map(|n| n.dot(axis)).fold(1.0, f64::min);
+                        // (a margin for the rounding of the normals and of acos)
+                        (axis, cos.clamp(-1.0, 1.0).acos() + 1e-9)
+                    }
+                    None => (DVec3::X, std::f64::consts::PI),
+                },
+                None => (DVec3::X, std::f64::consts::PI),
+            };
+            Cluster {
+                first: (c * CLUSTER) as u32,
+                len: chunk.len() as u32,
+                centre,
+                radius,
+                axis,
+                alpha,
+            }
+        })
+        .collect()
+}
+
+impl Cluster {
+    /// Whether every polygon of the cluster faces away from `eye` (see the module comment).
+    pub fn faces_away(&self, eye: DVec3) -> bool {
+        let w = self.centre - eye;
+        let dist = w.length();
+        if !(dist > self.radius * (1.0 + 1e-9)) || self.alpha >= std::f64::consts::FRAC_PI_2 {
+            return false;
+        }
+        let beta = (self.radius / dist).asin();
+        let sum = self.alpha + beta + CONE_SLACK;
+        sum < std::f64::consts::FRAC_PI_2 && w.dot(self.axis) / dist > sum.sin()
+    }
+
+    /// A lower bound on the distance from `eye` to any of its points.
+    pub fn nearest(&self, eye: DVec3) -> f64 {
+        ((self.centre - eye).length() - self.radius) * (1.0 - 1e-12)
+    }
+}
