@@ -34,6 +34,86 @@ pub struct Cluster {
     pub alpha: f64,
 }
 
+/// Puts the polygons in spatial order (the Morton order of their centroids in the scene's
+/// box, 21 bits an axis), so that each run of [`CLUSTER`] polygons lies together, whatever
+/// order the file gave them in; then numbers the vertices in the order the polygons first use
+/// them, so that a view reads them as it reads the polygons. Parallel; deterministic.
+pub fn sort(
+    verts: &mut Vec<DVec3>,
+    tris: &mut Vec<[u32; 3]>,
+    tri_ids: &mut Vec<i32>,
+    quads: &mut Vec<[u32; 4]>,
+    quad_ids: &mut Vec<i32>,
+) {
+    let (lo, hi) = verts
+        .par_iter()
+        .fold(
+            || (DVec3::INFINITY, DVec3::NEG_INFINITY),
+            |(l, h), &p| (l.min(p), h.max(p)),
+        )
+        .reduce(
+            || (DVec3::INFINITY, DVec3::NEG_INFINITY),
+            |a, b| (a.0.min(b.0), a.1.max(b.1)),
+        );
+    let scale = DVec3::splat(((1u64 << 21) - 1) as f64) / (hi - lo).max(DVec3::splat(1e-300));
+    let key = |c: DVec3| -> u64 {
+        let q = ((c - lo) * scale).clamp(DVec3::ZERO, DVec3::splat(((1u64 << 21) - 1) as f64));
+        spread(q.x as u64) | (spread(q.y as u64) << 1) | (spread(q.z as u64) << 2)
+    };
+    fn order<const N: usize>(
+        polys: &mut Vec<[u32; N]>,
+        ids: &mut Vec<i32>,
+        verts: &[DVec3],
+        key: &(dyn Fn(DVec3) -> u64 + Sync),
+    ) {
+        let mut keyed: Vec<(u64, u32)> = polys
+            .par_iter()
+            .enumerate()
+            .map(|(i, p)| {
+                let c = p.iter().map(|&v| verts[v as usize]).sum::<DVec3>() / N as f64;
+                (key(c), i as u32)
+            })
+            .collect();
+        keyed.par_sort_unstable();
+        *polys = keyed.par_iter().map(|&(_, i)| polys[i as usize]).collect();
+        *ids = keyed.par_iter().map(|&(_, i)| ids[i as usize]).collect();
+    }
+    order(tris, tri_ids, verts, &key);
+    order(quads, quad_ids, verts, &key);
+    // vertices in the order of first use
+    const NONE: u32 = u32::MAX;
+    let mut map = vec![NONE; verts.len()];
+    let mut next = 0u32;
+    let mut renumber = |v: &mut u32| {
+        let m = &mut map[*v as usize];
+        if *m == NONE {
+            *m = next;
+            next += 1;
+        }
+        *v = *m;
+    };
+    tris.iter_mut().flatten().for_each(&mut renumber);
+    quads.iter_mut().flatten().for_each(&mut renumber);
+    let mut out = vec![DVec3::ZERO; next as usize];
+    for (v, &m) in verts.iter().zip(&map) {
+        if m != NONE {
+            out[m as usize] = *v;
+        }
+    }
+    *verts = out;
+}
+
+/// The bits of `x` (21 of them) spread to every third bit.
+fn spread(x: u64) -> u64 {
+    let mut x = x & 0x1f_ffff;
+    x = (x | x << 32) & 0x1f00000000ffff;
+    x = (x | x << 16) & 0x1f0000ff0000ff;
+    x = (x | x << 8) & 0x100f00f00f00f00f;
+    x = (x | x << 4) & 0x10c30c30c30c30c3;
+    x = (x | x << 2) & 0x1249249249249249;
+    x
+}
+
 /// The clusters of `polys` (vertex indices into `verts`), `CLUSTER` consecutive ones each.
 pub fn build<const N: usize>(verts: &[DVec3], polys: &[[u32; N]]) -> Vec<Cluster> {
     polys

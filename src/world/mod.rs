@@ -50,7 +50,7 @@ use clusters::Cluster;
 use glam::DVec3;
 
 /// Rows per band: the unit of binning and of parallel work.
-pub const BAND: usize = 8;
+pub const BAND: usize = 16;
 
 /// Relative distance error below which an f32 hit is trusted (`setup.rs`): twice it stays
 /// under the 1e-5 tie tolerance and it is under the 1e-5 depth guarantee.
@@ -84,6 +84,9 @@ pub struct World {
     quad_ids: Vec<i32>,
     /// Spheres: centre, radius, id.
     spheres: Vec<(DVec3, f64, i32)>,
+    /// Each polygon's shape factor (`setup::shape`), parallel to `tris` and `quads`.
+    tri_shape: Vec<f32>,
+    quad_shape: Vec<f32>,
     /// Clusters of consecutive triangles, then of quads (`clusters.rs`).
     tri_clusters: Vec<Cluster>,
     quad_clusters: Vec<Cluster>,
@@ -159,6 +162,23 @@ impl World {
             }
         }
         debug_assert_eq!(id, scene.shapes.len());
+        clusters::sort(
+            &mut verts,
+            &mut tris,
+            &mut tri_ids,
+            &mut quads,
+            &mut quad_ids,
+        );
+        let shape = |v: &[u32]| -> [DVec3; 4] {
+            std::array::from_fn(|i| verts[v[i.min(v.len() - 1)] as usize])
+        };
+        let tri_shape = (tris.par_iter())
+            .map(|t| {
+                let v = shape(t);
+                setup::shape(&[v[0], v[1], v[2]])
+            })
+            .collect();
+        let quad_shape = quads.par_iter().map(|q| setup::shape(&shape(q))).collect();
         let tri_clusters = clusters::build(&verts, &tris);
         let quad_clusters = clusters::build(&verts, &quads);
         World {
@@ -168,6 +188,8 @@ impl World {
             quads,
             quad_ids,
             spheres,
+            tri_shape,
+            quad_shape,
             tri_clusters,
             quad_clusters,
         }
@@ -176,8 +198,8 @@ impl World {
     /// Bytes held by the prepared arrays.
     pub fn bytes(&self) -> usize {
         self.verts.len() * 24
-            + self.tris.len() * 16
-            + self.quads.len() * 20
+            + self.tris.len() * 20
+            + self.quads.len() * 24
             + self.spheres.len() * std::mem::size_of::<(DVec3, f64, i32)>()
             + (self.tri_clusters.len() + self.quad_clusters.len()) * std::mem::size_of::<Cluster>()
     }

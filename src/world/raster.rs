@@ -157,6 +157,11 @@ struct Band {
     loose: Vec<f32>,
     /// Re-decided in f64 whatever the f32 answer.
     flag: Vec<bool>,
+    /// The polygons (vertex indices, 3 or 4, and id) and spheres whose test ran at some pixel
+    /// of the band, with their boxes: every primitive the oracle may hit here (the outline
+    /// test leaves out only pixels no primitive's exact test accepts).
+    polys: Vec<([u32; 4], u8, i32, [u16; 4])>,
+    spheres: Vec<(DVec3, f64, i32, [u16; 4])>,
 }
 
 impl Band {
@@ -191,10 +196,14 @@ pub fn bands(
 fn members<'w, const N: usize>(
     polys: &'w [[u32; N]],
     ids: &'w [i32],
+    shape: &'w [f32],
     k: &Cluster,
-) -> impl Iterator<Item = ([u32; N], i32)> + 'w {
+) -> impl Iterator<Item = ([u32; N], i32, f32)> + 'w {
     let r = k.first as usize..(k.first + k.len) as usize;
-    polys[r.clone()].iter().copied().zip(ids[r].iter().copied())
+    (polys[r.clone()].iter().copied())
+        .zip(ids[r.clone()].iter().copied())
+        .zip(shape[r].iter().copied())
+        .map(|((v, id), g)| (v, id, g))
 }
 
 fn band(
@@ -217,6 +226,8 @@ fn band(
         id: vec![-1; n],
         loose: vec![f32::INFINITY; n],
         flag: vec![precision == Precision::F64; n],
+        polys: Vec::new(),
+        spheres: Vec::new(),
     };
     let list = |deferred: bool| {
         s.bins.iter().flat_map(move |c| {
@@ -227,13 +238,13 @@ fn band(
     };
     let render = |st: &mut Band, item: Item| match item {
         Item::Tris(k) => {
-            for (v, id) in members(&world.tris, &world.tri_ids, &k) {
-                raster_polygon(v, id, view, s, st);
+            for (v, id, g) in members(&world.tris, &world.tri_ids, &world.tri_shape, &k) {
+                raster_polygon(v, id, g, view, s, st);
             }
         }
         Item::Quads(k) => {
-            for (v, id) in members(&world.quads, &world.quad_ids, &k) {
-                raster_polygon(v, id, view, s, st);
+            for (v, id, g) in members(&world.quads, &world.quad_ids, &world.quad_shape, &k) {
+                raster_polygon(v, id, g, view, s, st);
             }
         }
         Item::Sphere(c, r, id) => raster_sphere(c, r, id, view, st),
@@ -243,7 +254,6 @@ fn band(
     }
     // Deferred clusters: rendered unless every pixel of their box holds a trusted hit nearer
     // than their nearest point.
-    let mut rendered = Vec::new();
     for i in list(true) {
         let item = world.item(i);
         let (Item::Tris(k) | Item::Quads(k)) = item else {
@@ -251,7 +261,6 @@ fn band(
         };
         if !hidden(&k, view, &st) {
             render(&mut st, item);
-            rendered.push(i);
         }
     }
     // Which pixels the f32 answer is not trusted at.
@@ -268,24 +277,13 @@ fn band(
     let mut best = Vec::new();
     if any {
         best = vec![Hit::<f64>::NONE; n];
-        for i in list(false).chain(rendered.iter().copied()) {
-            match world.item(i) {
-                Item::Tris(k) => {
-                    for (v, id) in members(&world.tris, &world.tri_ids, &k) {
-                        redecide_polygon(world, v, id, view, s, &st, &mut best);
-                    }
-                }
-                Item::Quads(k) => {
-                    for (v, id) in members(&world.quads, &world.quad_ids, &k) {
-                        redecide_polygon(world, v, id, view, s, &st, &mut best);
-                    }
-                }
-                Item::Sphere(c, r, id) => {
-                    if let Some(bx) = view.sphere_box(c, r) {
-                        let k = SphereK::new(c, r, view.eye);
-                        redecide_box(bx, id, view, &st, &mut best, |d| sphere_x1(&k, d));
-                    }
-                }
+        for &(v, n, id, bx) in &st.polys {
+            redecide_polygon(world, v, n, id, bx, view, &st, &mut best);
+        }
+        for &(c, r, id, bx) in &st.spheres {
+            if flagged(bx, &st) {
+                let k = SphereK::new(c, r, view.eye);
+                redecide_box(bx, id, view, &st, &mut best, |d| sphere_x1(&k, d));
             }
         }
     }
@@ -401,7 +399,14 @@ fn outline<const N: usize>(
 const OUTLINE_REL: f32 = 2e-6;
 
 #[inline(always)]
-fn raster_polygon<const N: usize>(v: [u32; N], id: i32, view: &View, s: &Scratch, st: &mut Band) {
+fn raster_polygon<const N: usize>(
+    v: [u32; N],
+    id: i32,
+    g: f32,
+    view: &View,
+    s: &Scratch,
+    st: &mut Band,
+) {
     let p = v.map(|i| s.proj[i as usize]);
     let Some(bx) = view.polygon_box(p) else {
         return;
@@ -414,7 +419,10 @@ fn raster_polygon<const N: usize>(v: [u32; N], id: i32, view: &View, s: &Scratch
     if picked == Some(0) {
         return;
     }
-    let k = setup::polygon(v.map(|i| s.rel[i as usize]), &view.basis);
+    let k = setup::polygon(v.map(|i| s.rel[i as usize]), g, &view.basis);
+    let mut v4 = [v[0]; 4];
+    v4[..N].copy_from_slice(&v);
+    st.polys.push((v4, N as u8, id, bx));
     match picked {
         Some(n) => {
             for &j in &cand[..n] {
@@ -478,6 +486,10 @@ fn raster_sphere(c: DVec3, r: f64, id: i32, view: &View, st: &mut Band) {
     let Some(bx) = view.sphere_box(c, r) else {
         return;
     };
+    if st.rows(bx).is_empty() {
+        return;
+    }
+    st.spheres.push((c, r, id, bx));
     let k = SphereK::new(c, r, view.eye).cast::<f32>();
     let (x0, x1) = (bx[0] as usize, bx[1] as usize);
     for y in st.rows(bx) {
@@ -499,23 +511,22 @@ fn raster_sphere(c: DVec3, r: f64, id: i32, view: &View, st: &mut Band) {
 }
 
 /// Pass 4 for one polygon: the oracle's constants and test at each flagged pixel of its box.
-fn redecide_polygon<const N: usize>(
+#[allow(clippy::too_many_arguments)]
+fn redecide_polygon(
     world: &World,
-    v: [u32; N],
+    v: [u32; 4],
+    n: u8,
     id: i32,
+    bx: [u16; 4],
     view: &View,
-    s: &Scratch,
     st: &Band,
     best: &mut [Hit<f64>],
 ) {
-    let Some(bx) = view.polygon_box(v.map(|i| s.proj[i as usize])) else {
-        return;
-    };
     if !flagged(bx, st) {
         return;
     }
-    let w: [DVec3; N] = v.map(|i| world.verts[i as usize]);
-    let k = if N == 3 {
+    let w: [DVec3; 4] = v.map(|i| world.verts[i as usize]);
+    let k = if n == 3 {
         PolyK::<f64, 3>::triangle(&[w[0], w[1], w[2]], view.eye).map(|k| Known::Tri(k))
     } else {
         PolyK::<f64, 4>::quad(&[w[0], w[1], w[2], w[3]], view.eye).map(|k| Known::Quad(k))

@@ -93,6 +93,31 @@ fn less(a: [f32; 3], b: [f32; 3]) -> bool {
     (a[0], a[1], a[2]) <= (b[0], b[1], b[2])
 }
 
+/// A polygon's shape factor `diam / sin(alpha)`: its diameter over the sine of the angle
+/// between the two vectors its normal is the cross product of (edges for a triangle,
+/// diagonals for a quad); infinite when they are parallel. Camera-independent.
+pub fn shape<const N: usize>(v: &[glam::DVec3; N]) -> f32 {
+    let (e1, e2) = if N == 3 {
+        (v[1] - v[0], v[2] - v[0])
+    } else {
+        (v[2] - v[0], v[3] - v[1])
+    };
+    let mut diam = 0.0f64;
+    for i in 0..N {
+        for j in i + 1..N {
+            diam = diam.max((v[j] - v[i]).length());
+        }
+    }
+    let raw = e1.cross(e2).length();
+    let g = diam * e1.length() * e2.length() / raw;
+    // (rounded up, and infinite for a degenerate polygon)
+    if g.is_finite() {
+        (g * (1.0 + 1e-6)) as f32
+    } else {
+        f32::INFINITY
+    }
+}
+
 /// The view's basis in f32 and the largest `|v|`.
 #[derive(Debug, Clone, Copy)]
 pub struct Basis {
@@ -112,8 +137,10 @@ impl Basis {
 const OPAQUE: f32 = 0.0;
 
 /// The constants of the polygon with eye-relative vertices `a` (perimeter order).
+///
+/// `g` is the polygon's shape factor, `diam / sin(alpha)` ([`shape`]), computed once per scene.
 #[inline]
-pub fn polygon<const N: usize>(a: [[f32; 3]; N], b: &Basis) -> Poly<N> {
+pub fn polygon<const N: usize>(a: [[f32; 3]; N], g: f32, b: &Basis) -> Poly<N> {
     let opaque = Poly {
         e: [[0.0; 3]; N],
         den: [0.0; 3],
@@ -139,20 +166,14 @@ pub fn polygon<const N: usize>(a: [[f32; 3]; N], b: &Basis) -> Poly<N> {
     if !(p > 0.0 && p.is_finite()) {
         return opaque;
     }
-    let m = a.iter().map(|&v| dot(v, v)).fold(0.0f32, f32::max).sqrt() as f64;
-    let mut diam = 0.0f32;
-    for i in 0..N {
-        for j in i + 1..N {
-            let d = sub(a[j], a[i]);
-            diam = diam.max(dot(d, d));
-        }
-    }
-    let diam = diam.sqrt() as f64;
-    let sin_alpha = raw_len as f64 / ((dot(e1, e1) as f64).sqrt() * (dot(e2, e2) as f64).sqrt());
-    let pd = p as f64;
-    let e_t = U32 * (16.0 * m / pd + 4.0 * diam / (pd * sin_alpha)) + 8.0 * U32;
-    let e_edge = U32 * (4.0 * m / pd + 8.0);
-    if !(e_edge <= EPS_MAX && e_t.is_finite()) {
+    // The bounds are evaluated in f32: each carries a relative error of a few u, far inside
+    // the slack of their constants.
+    let m = a.iter().map(|&v| dot(v, v)).fold(0.0f32, f32::max).sqrt();
+    let u = U32 as f32;
+    let rp = 1.0 / p;
+    let e_t = u * (16.0 * m + 4.0 * g) * rp + 8.0 * u;
+    let e_edge = u * (4.0 * m * rp + 8.0);
+    if !(e_edge <= EPS_MAX as f32 && e_t < f32::INFINITY) {
         return opaque;
     }
     let mut e = [[0.0f32; 3]; N];
@@ -171,7 +192,7 @@ pub fn polygon<const N: usize>(a: [[f32; 3]; N], b: &Basis) -> Poly<N> {
         }
         *ei = b.coeffs(scale(scale(m, rcp), s));
     }
-    let class = if e_t <= T_TIGHT && e_edge <= EDGE_TIGHT {
+    let class = if e_t <= T_TIGHT as f32 && e_edge <= EDGE_TIGHT as f32 {
         Class::Tight
     } else {
         Class::Loose
@@ -180,8 +201,8 @@ pub fn polygon<const N: usize>(a: [[f32; 3]; N], b: &Basis) -> Poly<N> {
         e,
         den: b.coeffs(nrm),
         p,
-        eps: (e_edge * b.lmax) as f32,
-        lower: (1.0 - 2.0 * e_t).max(0.0) as f32,
+        eps: e_edge * b.lmax as f32,
+        lower: (1.0 - 2.0 * e_t).max(0.0),
         class,
     }
 }
