@@ -170,7 +170,10 @@ impl Cluster {
     pub fn faces_away(&self, eye: DVec3) -> bool {
         let w = self.centre - eye;
         let dist = w.length();
-        if !(dist > self.radius * (1.0 + 1e-9)) || self.alpha >= std::f64::consts::FRAC_PI_2 {
+        if dist.is_nan()
+            || dist <= self.radius * (1.0 + 1e-9)
+            || self.alpha >= std::f64::consts::FRAC_PI_2
+        {
             return false;
         }
         let beta = (self.radius / dist).asin();

@@ -288,8 +288,9 @@ impl World {
                     Item::Sphere(c, r, _) => (view.sphere_box(c, r), false),
                 };
                 if let Some(b) = b {
-                    for band in b[2] as usize / BAND..=b[3] as usize / BAND {
-                        bins[band].push((i as u32, deferred));
+                    let bands = b[2] as usize / BAND..=b[3] as usize / BAND;
+                    for list in &mut bins[bands] {
+                        list.push((i as u32, deferred));
                     }
                 }
             }

@@ -103,7 +103,7 @@ impl View {
         if p.iter().all(|q| q[2] < -NEAR_COS) {
             return None;
         }
-        if p.iter().any(|q| !(q[2] > NEAR_COS)) {
+        if p.iter().any(|q| q[2].is_nan() || q[2] <= NEAR_COS) {
             return Some(self.full());
         }
         let (mut x0, mut x1, mut y0, mut y1) = (p[0][0], p[0][0], p[0][1], p[0][1]);
@@ -328,7 +328,7 @@ fn hidden(k: &Cluster, view: &View, st: &Band) -> bool {
             }
             let sx = view.t32.sx[x] as f64;
             let t = st.t[j] as f64 * (1.0 + sx * sx + sy * sy).sqrt();
-            if !(t * (1.0 + 4.0 * T_TIGHT) < near) {
+            if t.is_nan() || t * (1.0 + 4.0 * T_TIGHT) >= near {
                 return false;
             }
         }
@@ -354,7 +354,9 @@ fn outline<const N: usize>(
 ) -> Option<usize> {
     let rows = st.rows(bx);
     let (x0, x1) = (bx[0] as usize, bx[1] as usize);
-    if rows.len() * (x1 + 1 - x0) > OUTLINE_MAX || p.iter().any(|q| !(q[2] > NEAR_COS)) {
+    if rows.len() * (x1 + 1 - x0) > OUTLINE_MAX
+        || p.iter().any(|q| q[2].is_nan() || q[2] <= NEAR_COS)
+    {
         return None;
     }
     let area = if N == 3 {
@@ -466,7 +468,7 @@ fn test_polygon<const N: usize>(
         return;
     }
     let den = (k.den[0] + sy * k.den[2]) + sx * k.den[1];
-    if !(den > 0.0) {
+    if den.is_nan() || den <= 0.0 {
         if k.class == Class::Loose {
             st.loose[j] = 0.0;
         }
@@ -527,9 +529,9 @@ fn redecide_polygon(
     }
     let w: [DVec3; 4] = v.map(|i| world.verts[i as usize]);
     let k = if n == 3 {
-        PolyK::<f64, 3>::triangle(&[w[0], w[1], w[2]], view.eye).map(|k| Known::Tri(k))
+        PolyK::<f64, 3>::triangle(&[w[0], w[1], w[2]], view.eye).map(Known::Tri)
     } else {
-        PolyK::<f64, 4>::quad(&[w[0], w[1], w[2], w[3]], view.eye).map(|k| Known::Quad(k))
+        PolyK::<f64, 4>::quad(&[w[0], w[1], w[2], w[3]], view.eye).map(Known::Quad)
     };
     match k {
         Some(Known::Tri(k)) => redecide_box(bx, id, view, st, best, |d| polygon_x1(&k, d)),
