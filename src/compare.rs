@@ -125,6 +125,17 @@ pub fn compare(scene: &Scene, camera: &Camera) -> (Report, Frame<f64>) {
 
 /// [`compare`] with the packet kernel's acceleration chosen by the caller.
 pub fn compare_with(scene: &Scene, camera: &Camera, accel: Accel) -> (Report, Frame<f64>) {
+    if accel == Accel::World {
+        let options = crate::Options {
+            accel,
+            method: Method::Default,
+            ..crate::Options::default()
+        };
+        let frame = crate::Renderer::new(scene, camera, &options)
+            .expect("the default method takes every acceleration")
+            .render();
+        return compare_frame(scene, camera, &frame);
+    }
     let (w, h) = (camera.width as usize, camera.height as usize);
     let packet = render_packet(
         &PacketScene::new(scene, camera, accel),

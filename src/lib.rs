@@ -122,6 +122,7 @@ pub(crate) mod surface;
 #[cfg(test)]
 mod test_rng;
 pub(crate) mod words;
+pub mod world;
 
 pub use accel::Accel;
 pub use camera::{Camera, DEFAULT_FOV};

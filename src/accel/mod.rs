@@ -46,6 +46,10 @@ pub enum Accel {
     Bvh,
     /// `tiles`: primitives binned into 8x8-pixel screen tiles, tested nearest first.
     Tiles,
+    /// `world`: the scene prepared once for any camera ([`crate::world::World`]), each view
+    /// rendered in object order; a view's bits are its own (not `tiles`' bit for bit), held to
+    /// the f64 oracle.
+    World,
 }
 
 impl Accel {
@@ -65,6 +69,7 @@ impl Accel {
             Accel::None => "none",
             Accel::Bvh => "bvh",
             Accel::Tiles => "tiles",
+            Accel::World => "world",
         }
     }
 }

@@ -75,8 +75,9 @@ pub(super) struct View {
     pub(super) threads: Option<usize>,
     /// Acceleration: auto (tiles from 2 primitives on), none (test every primitive), tiles
     /// (primitives binned into screen tiles, nearest first), bvh (a bounding volume
-    /// hierarchy). Every kernel and precision takes each; the lab's brute-force methods take
-    /// none or auto.
+    /// hierarchy), world (the scene prepared once for every view, each view rendered in
+    /// object order and held to the f64 oracle). Every kernel and precision takes each; the
+    /// lab's brute-force methods take none or auto.
     #[arg(long, value_enum, default_value = "auto")]
     pub(super) accel: AccelArg,
     /// Intersection method of the simd kernel: eplane+stable (the default: edge planes through
@@ -99,6 +100,7 @@ pub enum AccelArg {
     None,
     Bvh,
     Tiles,
+    World,
 }
 
 impl From<AccelArg> for crate::accel::Accel {
@@ -108,6 +110,7 @@ impl From<AccelArg> for crate::accel::Accel {
             AccelArg::None => crate::accel::Accel::None,
             AccelArg::Bvh => crate::accel::Accel::Bvh,
             AccelArg::Tiles => crate::accel::Accel::Tiles,
+            AccelArg::World => crate::accel::Accel::World,
         }
     }
 }

@@ -8,8 +8,9 @@ use super::{Frame, Kernel, PacketScene, Setup, f32_depth, packet_blocks, strip_c
 use crate::accel::Accel;
 use crate::kernel::packet::{BLOCK_H, BLOCK_W};
 use crate::soa::IdSet;
-use std::sync::Mutex;
+use crate::world::{self, World};
 use std::sync::atomic::AtomicUsize;
+use std::sync::{Arc, Mutex};
 
 /// How to render: which kernel, which acceleration, which intersection method.
 /// `Options::default()` is what the command line does with no flags: 8-lane packets, automatic
@@ -32,7 +33,8 @@ impl Options {
     pub fn check(&self) -> crate::Result<()> {
         match (self.method, self.kernel) {
             (m, Kernel::Packet)
-                if m.is_brute_force() && matches!(self.accel, Accel::Bvh | Accel::Tiles) =>
+                if m.is_brute_force()
+                    && matches!(self.accel, Accel::Bvh | Accel::Tiles | Accel::World) =>
             {
                 Err(crate::Error::usage(format!(
                     "method {} tests every primitive; it takes no acceleration",
@@ -73,6 +75,14 @@ pub struct Renderer<'s> {
 enum Job<'s> {
     Setup(Box<Setup>, Option<Box<Redecide<'s>>>),
     Method(Box<dyn method::MethodRender + 's>),
+    /// `--accel world`: the prepared scene (shared by every view), the camera, the precision
+    /// and the view's working buffers.
+    World(
+        Arc<World>,
+        crate::camera::Camera,
+        world::Precision,
+        Mutex<world::Scratch>,
+    ),
 }
 
 /// What a finished renderer leaves for the next one of the same scene to fill rather than
@@ -110,6 +120,10 @@ impl<'s> Renderer<'s> {
         left_out: Option<&IdSet>,
     ) -> crate::Result<Renderer<'s>> {
         options.check()?;
+        if options.accel == Accel::World {
+            let world = Arc::new(World::new(scene));
+            return Ok(Renderer::of_world(world, camera, options, spare));
+        }
         let job = match (options.method, options.kernel) {
             (Method::Auto, Kernel::Packet) => {
                 return Ok(Renderer::auto_in(
@@ -142,6 +156,28 @@ impl<'s> Renderer<'s> {
         })
     }
 
+    /// A renderer of `camera`'s view of a prepared [`World`] (`--accel world`), in the
+    /// precision `options` give: `auto` with [`Method::Auto`] and the packet kernel, f64 with
+    /// the f64 oracle's kernel or [`Method::F64x4`], f32 otherwise.
+    pub(crate) fn of_world(
+        world: Arc<World>,
+        camera: &crate::camera::Camera,
+        options: &Options,
+        spare: Spare,
+    ) -> Renderer<'s> {
+        let precision = match (options.method, options.kernel) {
+            (Method::F64x4, _) | (_, Kernel::ScalarF64) => world::Precision::F64,
+            (Method::Auto, Kernel::Packet) => world::Precision::Auto,
+            _ => world::Precision::F32,
+        };
+        Renderer {
+            width: camera.width as usize,
+            height: camera.height as usize,
+            job: Job::World(world, *camera, precision, Mutex::default()),
+            spare: Mutex::new(spare.frame),
+        }
+    }
+
     /// The buffers this renderer leaves for the next ([`Renderer::with_spare`]).
     pub(crate) fn into_spare(self) -> Spare {
         let frame = self.spare.into_inner().unwrap_or_else(|e| e.into_inner());
@@ -153,7 +189,7 @@ impl<'s> Renderer<'s> {
                 },
                 redo.map(|r| r.into_spare()).unwrap_or_default(),
             ),
-            Job::Method(_) => Default::default(),
+            Job::Method(_) | Job::World(..) => Default::default(),
         };
         Spare {
             frame,
@@ -170,6 +206,10 @@ impl<'s> Renderer<'s> {
         camera: &crate::camera::Camera,
         accel: Accel,
     ) -> Renderer<'s> {
+        if accel == Accel::World {
+            let world = Arc::new(World::new(scene));
+            return Renderer::of_world(world, camera, &Options::default(), Spare::default());
+        }
         Renderer::auto_in(scene, camera, accel, Spare::default(), None)
     }
 
@@ -204,6 +244,7 @@ impl<'s> Renderer<'s> {
         match &self.job {
             Job::Setup(s, _) => s.accel(),
             Job::Method(m) => m.accel(),
+            Job::World(..) => Accel::World,
         }
     }
 
@@ -212,7 +253,7 @@ impl<'s> Renderer<'s> {
     /// thread.
     pub fn is_parallel(&self) -> bool {
         match &self.job {
-            Job::Setup(..) => true,
+            Job::Setup(..) | Job::World(..) => true,
             Job::Method(m) => m.is_parallel(),
         }
     }
@@ -221,6 +262,7 @@ impl<'s> Renderer<'s> {
     /// with the packet kernel).
     pub fn redecides(&self) -> bool {
         matches!(self.job, Job::Setup(_, Some(_)))
+            || matches!(self.job, Job::World(_, _, world::Precision::Auto, _))
     }
 
     /// What `--precision auto` did on the tile path in this renderer's last frame
@@ -272,6 +314,10 @@ impl<'s> Renderer<'s> {
                 other => (other.render_counting(w, h, progress), Vec::new()),
             },
             Job::Method(m) => (f32_depth(m.render()), Vec::new()),
+            Job::World(world, camera, precision, scratch) => {
+                let mut scratch = scratch.lock().unwrap_or_else(|e| e.into_inner());
+                world.render_marking(camera, *precision, &mut scratch, spare())
+            }
         }
     }
 }

@@ -39,6 +39,8 @@ pub struct Views<'s> {
     /// side of faces it guesses hidden (`cull::Facing`), the frame of the last second render,
     /// and spare id sets.
     cull: Mutex<CullState>,
+    /// `--accel world`: the scene prepared once, by the first view.
+    world: OnceLock<std::sync::Arc<crate::world::World>>,
 }
 
 #[derive(Default)]
@@ -88,6 +90,7 @@ impl<'s> Views<'s> {
             range: OnceLock::new(),
             spare: Mutex::new(Spare::default()),
             cull: Mutex::new(CullState::default()),
+            world: OnceLock::new(),
         })
     }
 
@@ -128,6 +131,26 @@ impl<'s> Views<'s> {
     /// cannot see (`render::cull`); the ids and depths are a render of every primitive's, bit
     /// for bit. Views render one at a time: each reads what the one before showed.
     pub fn render_marking(&self, camera: &Camera) -> Result<Rendered> {
+        if self.options.accel == Accel::World {
+            let clock = cull::Clock::start();
+            let renderer = self.renderer(camera)?;
+            let setup_s = clock.secs();
+            let clock = cull::Clock::start();
+            let (frame, redecided) = renderer.render_marking(None);
+            let done = Rendered {
+                frame,
+                redecided,
+                setup_s,
+                render_s: clock.secs(),
+                accel: Accel::World,
+                parallel: true,
+                redecides: renderer.redecides(),
+                left_out: 0,
+                renders: 1,
+            };
+            self.give_back(renderer);
+            return Ok(done);
+        }
         let mut guard = self.cull.lock().unwrap_or_else(|e| e.into_inner());
         let state = &mut *guard;
         let culls = cull::applies(&self.options, self.scene);
@@ -259,6 +282,17 @@ impl<'s> Views<'s> {
     /// [`Views::give_back`] once done. The eye's range is not checked here: call
     /// [`Views::check`] first.
     pub fn renderer(&self, camera: &Camera) -> Result<Renderer<'s>> {
+        if self.options.accel == Accel::World {
+            let world = self
+                .world
+                .get_or_init(|| std::sync::Arc::new(crate::world::World::new(self.scene)));
+            return Ok(Renderer::of_world(
+                world.clone(),
+                camera,
+                &self.options,
+                self.take_spare(),
+            ));
+        }
         Renderer::with_spare(self.scene, camera, &self.options, self.take_spare(), None)
     }
 

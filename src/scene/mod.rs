@@ -26,7 +26,7 @@ pub mod views;
 pub use arrays::scene_from_arrays;
 use glam::DVec3;
 pub use memory::{parse_mesh_bytes, parse_scene_with};
-pub use shapes::{Iter, Mesh, Shapes};
+pub use shapes::{Iter, Mesh, PartRef, Shapes};
 use std::path::PathBuf;
 
 use crate::error::Result;

@@ -103,6 +103,15 @@ pub(crate) enum Part {
     Mesh(Mesh, usize),
 }
 
+/// One run of [`Shapes::parts`].
+#[derive(Debug, Clone, Copy)]
+pub enum PartRef<'a> {
+    /// Consecutive loose shapes.
+    Loose(&'a [Shape]),
+    /// One mesh's faces.
+    Mesh(&'a Mesh),
+}
+
 /// Every primitive of a scene, in id order (see the module comment).
 #[derive(Clone, Default)]
 pub struct Shapes {
@@ -313,6 +322,15 @@ impl Shapes {
                 let first = ids.start + c * chunk;
                 (first, self.range(first..(first + chunk).min(ids.end)))
             })
+    }
+
+    /// The runs of consecutive ids in order: loose shapes, or one mesh's faces. Their lengths
+    /// add up to `len()`.
+    pub fn parts(&self) -> impl Iterator<Item = PartRef<'_>> {
+        self.runs.iter().enumerate().map(|(r, run)| match run.src {
+            Src::Loose(at) => PartRef::Loose(&self.loose[at..at + self.run_end(r) - run.first]),
+            Src::Mesh(k) => PartRef::Mesh(&self.meshes[k].0),
+        })
     }
 
     /// The loose shapes (those not from a mesh), in id order.

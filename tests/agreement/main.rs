@@ -330,3 +330,4 @@ fn check_near_and_far(name: &str, scene: &Scene, w: u32, h: u32, mesh: Mesh, min
 mod meshes;
 mod random;
 mod seeds;
+mod world;

@@ -1,0 +1,576 @@
+//! A view's pixel work: projection and boxes, then each band's f32 pass and its f64 re-decisions.
+
+use super::clusters::Cluster;
+use super::setup::{self, Basis, Class, EPS_MAX, Poly};
+use super::{BAND, Item, Precision, Scratch, T_TIGHT, World};
+use crate::camera::{Camera, RayTables};
+use crate::frame::Frame;
+use crate::kernel::Hit;
+use crate::kernel::polygon::{PolyK, polygon_x1};
+use crate::kernel::sphere::{SphereK, sphere_x1};
+use crate::par::prelude::*;
+use glam::DVec3;
+
+/// What every pass of one view reads: the camera, its f32 and f64 ray tables, its basis.
+pub struct View {
+    pub eye: DVec3,
+    w: usize,
+    h: usize,
+    t32: RayTables<f32>,
+    t64: RayTables<f64>,
+    basis: Basis,
+    half_w: f32,
+    half_h: f32,
+    /// Pixels of box margin: the projection's rounding and the widest edge tolerance.
+    margin: f32,
+}
+
+/// Pixels of box margin for the projection's rounding (a few u of the image's size).
+const MARGIN_PX: f64 = 0.01;
+
+/// Cosine (of a vertex's angle to the view axis) below which a polygon is boxed to the whole
+/// image: every pixel ray is within 90 - 0.0006 degrees of the axis for fov < 180 and any
+/// size the limits allow, far from it.
+const NEAR_COS: f32 = 1e-5;
+
+impl View {
+    pub fn new(camera: &Camera) -> View {
+        let t32 = camera.tables::<f32>(1, 1);
+        let t64 = camera.tables::<f64>(1, 1);
+        let lmax = (1.0 + camera.half_w * camera.half_w + camera.half_h * camera.half_h).sqrt();
+        // pixels per radian, at most: d(sx)/d(angle) <= 1 + sx^2 <= lmax^2
+        let px_per_rad = camera.width as f64 / (2.0 * camera.half_w) * lmax * lmax;
+        View {
+            eye: camera.eye,
+            w: camera.width as usize,
+            h: camera.height as usize,
+            basis: Basis {
+                f: t32.f,
+                r: t32.r,
+                u: t32.u,
+                lmax,
+            },
+            t32,
+            t64,
+            half_w: camera.half_w as f32,
+            half_h: camera.half_h as f32,
+            margin: (MARGIN_PX + EPS_MAX * lmax * px_per_rad) as f32,
+        }
+    }
+
+    pub fn bands(&self) -> usize {
+        self.h.div_ceil(BAND)
+    }
+
+    /// A vertex's pixel coordinates and the cosine of its angle to the view axis.
+    #[inline(always)]
+    pub fn project(&self, r: [f32; 3]) -> [f32; 3] {
+        let b = &self.basis;
+        let z = setup::dot(r, b.f);
+        let len = setup::dot(r, r).sqrt();
+        let sx = setup::dot(r, b.r) / z;
+        let sy = setup::dot(r, b.u) / z;
+        let px = (sx / self.half_w + 1.0) * (self.w as f32 * 0.5) - 0.5;
+        let py = (1.0 - sy / self.half_h) * (self.h as f32 * 0.5) - 0.5;
+        [px, py, z / len]
+    }
+
+    fn full(&self) -> [u16; 4] {
+        [0, (self.w - 1) as u16, 0, (self.h - 1) as u16]
+    }
+
+    fn clip(&self, x0: f32, x1: f32, y0: f32, y1: f32) -> Option<[u16; 4]> {
+        let m = self.margin;
+        let (x0, x1) = (
+            (x0 - m).ceil().max(0.0),
+            (x1 + m).floor().min(self.w as f32 - 1.0),
+        );
+        let (y0, y1) = (
+            (y0 - m).ceil().max(0.0),
+            (y1 + m).floor().min(self.h as f32 - 1.0),
+        );
+        // (NaN fails these)
+        if x0 <= x1 && y0 <= y1 {
+            Some([x0 as u16, x1 as u16, y0 as u16, y1 as u16])
+        } else {
+            None
+        }
+    }
+
+    /// The pixel box of a polygon from its vertices' projections.
+    #[inline(always)]
+    pub fn polygon_box<const N: usize>(&self, p: [[f32; 3]; N]) -> Option<[u16; 4]> {
+        if p.iter().all(|q| q[2] < -NEAR_COS) {
+            return None;
+        }
+        if p.iter().any(|q| q[2].is_nan() || q[2] <= NEAR_COS) {
+            return Some(self.full());
+        }
+        let (mut x0, mut x1, mut y0, mut y1) = (p[0][0], p[0][0], p[0][1], p[0][1]);
+        for q in &p[1..] {
+            x0 = x0.min(q[0]);
+            x1 = x1.max(q[0]);
+            y0 = y0.min(q[1]);
+            y1 = y1.max(q[1]);
+        }
+        self.clip(x0, x1, y0, y1)
+    }
+
+    /// The pixel box of a sphere: interval bounds on `sx` and `sy` over its bounding cube.
+    pub fn sphere_box(&self, c: DVec3, r: f64) -> Option<[u16; 4]> {
+        let oc = c - self.eye;
+        let (f, rr, u) = (self.t64.f, self.t64.r, self.t64.u);
+        let d = |a: [f64; 3]| oc.x * a[0] + oc.y * a[1] + oc.z * a[2];
+        let (z, x, y) = (d(f), d(rr), d(u));
+        let pad = r * (1.0 + 1e-6) + 1e-9 * oc.length();
+        if z + pad < 0.0 {
+            return None;
+        }
+        if z - pad <= 1e-6 * oc.length() {
+            return Some(self.full());
+        }
+        let (zl, zh) = (z - pad, z + pad);
+        let range = |a: f64| {
+            let (lo, hi) = (a - pad, a + pad);
+            let lo = if lo < 0.0 { lo / zl } else { lo / zh };
+            let hi = if hi > 0.0 { hi / zl } else { hi / zh };
+            (lo, hi)
+        };
+        let (sx0, sx1) = range(x);
+        let (sy0, sy1) = range(y);
+        let (hw, hh) = (self.half_w as f64, self.half_h as f64);
+        let px = |sx: f64| ((sx / hw + 1.0) * self.w as f64 * 0.5 - 0.5) as f32;
+        let py = |sy: f64| ((1.0 - sy / hh) * self.h as f64 * 0.5 - 0.5) as f32;
+        self.clip(px(sx0), px(sx1), py(sy1), py(sy0))
+    }
+}
+
+/// One band's per-pixel state.
+struct Band {
+    x: usize,
+    y0: usize,
+    rows: usize,
+    /// Nearest t' (= t / |v|) so far and its id.
+    t: Vec<f32>,
+    id: Vec<i32>,
+    /// Lowest lower bound of a loose candidate's t'.
+    loose: Vec<f32>,
+    /// Re-decided in f64 whatever the f32 answer.
+    flag: Vec<bool>,
+    /// The polygons (vertex indices, 3 or 4, and id) and spheres whose test ran at some pixel
+    /// of the band, with their boxes: every primitive the oracle may hit here (the outline
+    /// test leaves out only pixels no primitive's exact test accepts).
+    polys: Vec<([u32; 4], u8, i32, [u16; 4])>,
+    spheres: Vec<(DVec3, f64, i32, [u16; 4])>,
+}
+
+impl Band {
+    #[inline(always)]
+    fn rows(&self, b: [u16; 4]) -> std::ops::Range<usize> {
+        (b[2] as usize).max(self.y0)..(b[3] as usize + 1).min(self.y0 + self.rows)
+    }
+}
+
+/// Passes 3 and 4 over every band, written into `frame` (every pixel: a reused frame's old
+/// values do not show through); the pixels decided in f64, ascending.
+pub fn bands(
+    world: &World,
+    view: &View,
+    s: &Scratch,
+    precision: Precision,
+    frame: &mut Frame<f32>,
+) -> Vec<usize> {
+    let w = view.w;
+    let redone: Vec<Vec<usize>> = frame
+        .ids
+        .par_chunks_mut(BAND * w)
+        .zip(frame.depth.par_chunks_mut(BAND * w))
+        .enumerate()
+        .map(|(b, (ids, depth))| band(world, view, s, precision, b, ids, depth))
+        .collect();
+    redone.concat()
+}
+
+/// The polygons of a cluster of kind `N`: their vertex indices and ids.
+#[inline(always)]
+fn members<'w, const N: usize>(
+    polys: &'w [[u32; N]],
+    ids: &'w [i32],
+    shape: &'w [f32],
+    k: &Cluster,
+) -> impl Iterator<Item = ([u32; N], i32, f32)> + 'w {
+    let r = k.first as usize..(k.first + k.len) as usize;
+    (polys[r.clone()].iter().copied())
+        .zip(ids[r.clone()].iter().copied())
+        .zip(shape[r].iter().copied())
+        .map(|((v, id), g)| (v, id, g))
+}
+
+fn band(
+    world: &World,
+    view: &View,
+    s: &Scratch,
+    precision: Precision,
+    b: usize,
+    ids: &mut [i32],
+    depth: &mut [f32],
+) -> Vec<usize> {
+    let w = view.w;
+    let rows = ids.len() / w;
+    let n = rows * w;
+    let mut st = Band {
+        x: w,
+        y0: b * BAND,
+        rows,
+        t: vec![f32::INFINITY; n],
+        id: vec![-1; n],
+        loose: vec![f32::INFINITY; n],
+        flag: vec![precision == Precision::F64; n],
+        polys: Vec::new(),
+        spheres: Vec::new(),
+    };
+    let list = |deferred: bool| {
+        s.bins.iter().flat_map(move |c| {
+            c[b].iter()
+                .filter(move |e| e.1 == deferred)
+                .map(|e| e.0 as usize)
+        })
+    };
+    let render = |st: &mut Band, item: Item| match item {
+        Item::Tris(k) => {
+            for (v, id, g) in members(&world.tris, &world.tri_ids, &world.tri_shape, &k) {
+                raster_polygon(v, id, g, view, s, st);
+            }
+        }
+        Item::Quads(k) => {
+            for (v, id, g) in members(&world.quads, &world.quad_ids, &world.quad_shape, &k) {
+                raster_polygon(v, id, g, view, s, st);
+            }
+        }
+        Item::Sphere(c, r, id) => raster_sphere(c, r, id, view, st),
+    };
+    for i in list(false) {
+        render(&mut st, world.item(i));
+    }
+    // Deferred clusters: rendered unless every pixel of their box holds a trusted hit nearer
+    // than their nearest point.
+    for i in list(true) {
+        let item = world.item(i);
+        let (Item::Tris(k) | Item::Quads(k)) = item else {
+            unreachable!("only clusters are deferred")
+        };
+        if !hidden(&k, view, &st) {
+            render(&mut st, item);
+        }
+    }
+    // Which pixels the f32 answer is not trusted at.
+    let mut any = false;
+    if precision != Precision::F32 {
+        for k in 0..n {
+            let l = st.loose[k];
+            let f =
+                st.flag[k] || (l < f32::INFINITY && l <= st.t[k] * (1.0 + 2.0 * T_TIGHT as f32));
+            st.flag[k] = f;
+            any |= f;
+        }
+    }
+    let mut best = Vec::new();
+    if any {
+        best = vec![Hit::<f64>::NONE; n];
+        for &(v, n, id, bx) in &st.polys {
+            redecide_polygon(world, v, n, id, bx, view, &st, &mut best);
+        }
+        for &(c, r, id, bx) in &st.spheres {
+            if flagged(bx, &st) {
+                let k = SphereK::new(c, r, view.eye);
+                redecide_box(bx, id, view, &st, &mut best, |d| sphere_x1(&k, d));
+            }
+        }
+    }
+    let mut redone = Vec::new();
+    for y in 0..rows {
+        let sy = view.t32.sy[st.y0 + y];
+        for x in 0..w {
+            let k = y * w + x;
+            if any && st.flag[k] {
+                ids[k] = best[k].id;
+                depth[k] = best[k].t as f32;
+                redone.push(st.y0 * w + k);
+            } else if st.id[k] >= 0 {
+                let sx = view.t32.sx[x];
+                ids[k] = st.id[k];
+                depth[k] = st.t[k] * (1.0 + sx * sx + sy * sy).sqrt();
+            } else {
+                ids[k] = -1;
+                depth[k] = f32::INFINITY;
+            }
+        }
+    }
+    redone
+}
+
+/// Whether cluster `k` is proven hidden in this band: every pixel of its box (in the band)
+/// holds a trusted f32 hit (tight, no loose candidate, not flagged) whose distance, with its
+/// error bound, is below the cluster's nearest point. Then no primitive of the cluster can be
+/// the nearest there, in f32 or in f64.
+fn hidden(k: &Cluster, view: &View, st: &Band) -> bool {
+    let Some(bx) = view.sphere_box(k.centre, k.radius) else {
+        return true;
+    };
+    let near = k.nearest(view.eye);
+    for y in st.rows(bx) {
+        let row = (y - st.y0) * st.x;
+        let sy = view.t32.sy[y] as f64;
+        for x in bx[0] as usize..=bx[1] as usize {
+            let j = row + x;
+            if st.id[j] < 0 || st.flag[j] || st.loose[j] < f32::INFINITY {
+                return false;
+            }
+            let sx = view.t32.sx[x] as f64;
+            let t = st.t[j] as f64 * (1.0 + sx * sx + sy * sy).sqrt();
+            if t.is_nan() || t * (1.0 + 4.0 * T_TIGHT) >= near {
+                return false;
+            }
+        }
+    }
+    true
+}
+
+/// Pixels a polygon's box may hold before the 2D outline test is skipped (the exact test
+/// then runs at every pixel of the box).
+const OUTLINE_MAX: usize = 64;
+
+/// The pixels of the band inside polygon `p`'s projected outline, widened by `margin` pixels
+/// (plus the projection's own rounding), as offsets into the band; `None` when the outline
+/// test does not apply (a vertex near or behind the eye plane, a box past [`OUTLINE_MAX`]
+/// pixels, an outline of no area).
+#[inline(always)]
+fn outline<const N: usize>(
+    p: &[[f32; 3]; N],
+    bx: [u16; 4],
+    view: &View,
+    st: &Band,
+    out: &mut [u32; OUTLINE_MAX],
+) -> Option<usize> {
+    let rows = st.rows(bx);
+    let (x0, x1) = (bx[0] as usize, bx[1] as usize);
+    if rows.len() * (x1 + 1 - x0) > OUTLINE_MAX
+        || p.iter().any(|q| q[2].is_nan() || q[2] <= NEAR_COS)
+    {
+        return None;
+    }
+    let area = if N == 3 {
+        (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0])
+    } else {
+        (p[2][0] - p[0][0]) * (p[3][1] - p[1][1]) - (p[2][1] - p[0][1]) * (p[3][0] - p[1][0])
+    };
+    if !(area != 0.0 && area.is_finite()) {
+        return None;
+    }
+    let sign = if area > 0.0 { 1.0f32 } else { -1.0 };
+    let big = p
+        .iter()
+        .fold(0.0f32, |m, q| m.max(q[0].abs()).max(q[1].abs()));
+    let margin = view.margin + OUTLINE_REL * (big + (view.w + view.h) as f32);
+    let edges: [[f32; 5]; N] = std::array::from_fn(|i| {
+        let (a, b) = (p[i], p[(i + 1) % N]);
+        let (dx, dy) = ((b[0] - a[0]) * sign, (b[1] - a[1]) * sign);
+        [dx, dy, a[0], a[1], -margin * (dx.abs() + dy.abs())]
+    });
+    let mut n = 0;
+    for y in rows {
+        let fy = y as f32;
+        let row = (y - st.y0) * st.x;
+        for x in x0..=x1 {
+            let fx = x as f32;
+            let inside = edges
+                .iter()
+                .all(|e| e[0] * (fy - e[3]) - e[1] * (fx - e[2]) >= e[4]);
+            if inside {
+                out[n] = (row + x) as u32;
+                n += 1;
+            }
+        }
+    }
+    Some(n)
+}
+
+/// The 2D outline test's allowance for the projection's rounding, relative to the largest
+/// pixel coordinate involved: about 30u, each coordinate having passed through a dozen f32
+/// operations.
+const OUTLINE_REL: f32 = 2e-6;
+
+#[inline(always)]
+fn raster_polygon<const N: usize>(
+    v: [u32; N],
+    id: i32,
+    g: f32,
+    view: &View,
+    s: &Scratch,
+    st: &mut Band,
+) {
+    let p = v.map(|i| s.proj[i as usize]);
+    let Some(bx) = view.polygon_box(p) else {
+        return;
+    };
+    if st.rows(bx).is_empty() {
+        return;
+    }
+    let mut cand = [0u32; OUTLINE_MAX];
+    let picked = outline(&p, bx, view, st, &mut cand);
+    if picked == Some(0) {
+        return;
+    }
+    let k = setup::polygon(v.map(|i| s.rel[i as usize]), g, &view.basis);
+    let mut v4 = [v[0]; 4];
+    v4[..N].copy_from_slice(&v);
+    st.polys.push((v4, N as u8, id, bx));
+    match picked {
+        Some(n) => {
+            for &j in &cand[..n] {
+                let j = j as usize;
+                let (x, y) = (j % st.x, st.y0 + j / st.x);
+                test_polygon(&k, id, x, y, j, view, st);
+            }
+        }
+        None => {
+            for y in st.rows(bx) {
+                let row = (y - st.y0) * st.x;
+                for x in bx[0] as usize..=bx[1] as usize {
+                    test_polygon(&k, id, x, y, row + x, view, st);
+                }
+            }
+        }
+    }
+}
+
+/// The f32 test of polygon `k` at pixel (x, y), offset `j` in the band.
+#[inline(always)]
+fn test_polygon<const N: usize>(
+    k: &Poly<N>,
+    id: i32,
+    x: usize,
+    y: usize,
+    j: usize,
+    view: &View,
+    st: &mut Band,
+) {
+    if k.class == Class::Opaque {
+        st.flag[j] = true;
+        return;
+    }
+    let (sx, sy) = (view.t32.sx[x], view.t32.sy[y]);
+    let mut inside = true;
+    for i in 0..N {
+        inside &= (k.e[i][0] + sy * k.e[i][2]) + sx * k.e[i][1] >= -k.eps;
+    }
+    if !inside {
+        return;
+    }
+    let den = (k.den[0] + sy * k.den[2]) + sx * k.den[1];
+    if den.is_nan() || den <= 0.0 {
+        if k.class == Class::Loose {
+            st.loose[j] = 0.0;
+        }
+        return;
+    }
+    let t = k.p / den;
+    if k.class == Class::Loose {
+        st.loose[j] = st.loose[j].min(t * k.lower);
+    }
+    if t < st.t[j] || (t == st.t[j] && id < st.id[j]) {
+        st.t[j] = t;
+        st.id[j] = id;
+    }
+}
+
+fn raster_sphere(c: DVec3, r: f64, id: i32, view: &View, st: &mut Band) {
+    let Some(bx) = view.sphere_box(c, r) else {
+        return;
+    };
+    if st.rows(bx).is_empty() {
+        return;
+    }
+    st.spheres.push((c, r, id, bx));
+    let k = SphereK::new(c, r, view.eye).cast::<f32>();
+    let (x0, x1) = (bx[0] as usize, bx[1] as usize);
+    for y in st.rows(bx) {
+        let row = (y - st.y0) * st.x;
+        let sy = view.t32.sy[y];
+        for x in x0..=x1 {
+            let j = row + x;
+            st.flag[j] = true;
+            if let Some(t) = sphere_x1(&k, view.t32.dir_x1(x, y)) {
+                let sx = view.t32.sx[x];
+                let t = t / (1.0 + sx * sx + sy * sy).sqrt();
+                if t < st.t[j] || (t == st.t[j] && id < st.id[j]) {
+                    st.t[j] = t;
+                    st.id[j] = id;
+                }
+            }
+        }
+    }
+}
+
+/// Pass 4 for one polygon: the oracle's constants and test at each flagged pixel of its box.
+#[allow(clippy::too_many_arguments)]
+fn redecide_polygon(
+    world: &World,
+    v: [u32; 4],
+    n: u8,
+    id: i32,
+    bx: [u16; 4],
+    view: &View,
+    st: &Band,
+    best: &mut [Hit<f64>],
+) {
+    if !flagged(bx, st) {
+        return;
+    }
+    let w: [DVec3; 4] = v.map(|i| world.verts[i as usize]);
+    let k = if n == 3 {
+        PolyK::<f64, 3>::triangle(&[w[0], w[1], w[2]], view.eye).map(Known::Tri)
+    } else {
+        PolyK::<f64, 4>::quad(&[w[0], w[1], w[2], w[3]], view.eye).map(Known::Quad)
+    };
+    match k {
+        Some(Known::Tri(k)) => redecide_box(bx, id, view, st, best, |d| polygon_x1(&k, d)),
+        Some(Known::Quad(k)) => redecide_box(bx, id, view, st, best, |d| polygon_x1(&k, d)),
+        None => {}
+    }
+}
+
+enum Known {
+    Tri(PolyK<f64, 3>),
+    Quad(PolyK<f64, 4>),
+}
+
+fn flagged(bx: [u16; 4], st: &Band) -> bool {
+    let (x0, x1) = (bx[0] as usize, bx[1] as usize);
+    st.rows(bx).any(|y| {
+        let row = (y - st.y0) * st.x;
+        st.flag[row + x0..=row + x1].contains(&true)
+    })
+}
+
+#[inline(always)]
+fn redecide_box(
+    bx: [u16; 4],
+    id: i32,
+    view: &View,
+    st: &Band,
+    best: &mut [Hit<f64>],
+    test: impl Fn([f64; 3]) -> Option<f64>,
+) {
+    let (x0, x1) = (bx[0] as usize, bx[1] as usize);
+    for y in st.rows(bx) {
+        let row = (y - st.y0) * st.x;
+        for x in x0..=x1 {
+            if st.flag[row + x]
+                && let Some(t) = test(view.t64.dir_x1(x, y))
+            {
+                best[row + x].update(t, id);
+            }
+        }
+    }
+}

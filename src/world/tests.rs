@@ -1,0 +1,1 @@
+//! The world engine held to the f64 oracle.
