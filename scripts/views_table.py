@@ -2,7 +2,7 @@
 """Many views of one scan: lanecast (`--views`) against the Embree 3 caster (`--views`), in one run.
 
 Usage: python3 scripts/views_table.py [--views N] [--rounds R] [--threads T] [--size WxH]
-                                      [--levels L ...]
+                                      [--levels L ...] [--accel auto|tiles|world]
 
 Needs ../shared/anchors (the Embree caster and orbit_views.py; not part of this repository) and
 Debian's libembree-dev (`apt-get install -y libembree-dev`). Builds both programs (as
@@ -11,7 +11,8 @@ scripts/vs_embree.py does), writes the armadillo subdivided L times into target/
 beside it, and an orbit of N views (orbit_views.py, the same cameras for both programs). Then,
 R rounds, alternating the programs:
 
-- lanecast: `-i SCENE --views FILE -size WxH -o DIR/v%04d.bmp --stats S.json --threads T`.
+- lanecast: `-i SCENE --views FILE -size WxH -o DIR/v%04d.bmp --stats S.json --threads T
+  --accel A` (`--accel` applies to the single view below too; default `auto`).
   Per view: setup (the scene prepared for the camera) plus render, from --stats' views.each
   (output encoding excluded); whole: the command's wall time (load, every view, BMP outputs).
 - Embree: `embree_cast SCENE --size WxH --views FILE --threads T`. Per view: its
@@ -70,7 +71,7 @@ def orbit(scene, n, out):
     return out
 
 
-def lanecast(scene, views, size, threads, tmp):
+def lanecast(scene, views, size, threads, tmp, accel):
     frames = tmp / "frames"
     shutil.rmtree(frames, ignore_errors=True)
     frames.mkdir()
@@ -78,7 +79,7 @@ def lanecast(scene, views, size, threads, tmp):
     t0 = time.perf_counter()
     vs_embree.sh([str(vs_embree.LANECAST), "-i", str(scene), "--views", str(views), "-size", size,
                   "-o", str(frames / "v%04d.bmp"), "--stats", str(stats), "--threads",
-                  str(threads)])
+                  str(threads), "--accel", accel])
     whole = time.perf_counter() - t0
     s = json.loads(stats.read_text())
     each = s["views"]["each"]
@@ -90,11 +91,11 @@ def lanecast(scene, views, size, threads, tmp):
             "peak": s["peak_rss_bytes"]}
 
 
-def single(scene, size, threads, tmp):
+def single(scene, size, threads, tmp, accel):
     """Wall seconds of a one-view run of the scene's own camera, a BMP written."""
     t0 = time.perf_counter()
     vs_embree.sh([str(vs_embree.LANECAST), "-i", str(scene), "-size", size, "-o",
-                  str(tmp / "one.bmp"), "--threads", str(threads)])
+                  str(tmp / "one.bmp"), "--threads", str(threads), "--accel", accel])
     return time.perf_counter() - t0
 
 
@@ -125,12 +126,13 @@ def main():
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--size", default="1920x1080")
     ap.add_argument("--levels", type=int, nargs="+", default=[3])
+    ap.add_argument("--accel", default="auto", choices=["auto", "tiles", "world"])
     a = ap.parse_args()
     vs_embree.build()
     cpu = next((line.split(":", 1)[1].strip() for line in open("/proc/cpuinfo")
                 if line.startswith("model name")), "unknown CPU")
     print(f"{cpu}, {os.cpu_count()} cores; {a.threads} threads, {a.size}, {a.views}-view orbit, "
-          f"median of {a.rounds} alternated rounds\n")
+          f"--accel {a.accel}, median of {a.rounds} alternated rounds\n")
     print("| scene | triangles | lanecast per view (setup + render) | Embree per view | ratio "
           "| lanecast whole | Embree build + views | ratio |")
     print("|---|---:|---:|---:|---:|---:|---:|---:|")
@@ -143,9 +145,9 @@ def main():
             views = orbit(scene, a.views, tmp / "views.txt")
             runs_l, runs_e, singles = [], [], []
             for _ in range(a.rounds):
-                runs_l.append(lanecast(scene, views, a.size, a.threads, tmp))
+                runs_l.append(lanecast(scene, views, a.size, a.threads, tmp, a.accel))
                 runs_e.append(embree(scene, views, a.size, a.threads))
-                singles.append(single(scene, a.size, a.threads, tmp))
+                singles.append(single(scene, a.size, a.threads, tmp, a.accel))
             med = lambda runs, k: statistics.median(r[k] for r in runs)  # noqa: E731
             lv, ev, lw, ew = med(runs_l, "view"), med(runs_e, "view"), med(runs_l, "whole"), \
                 med(runs_e, "whole")

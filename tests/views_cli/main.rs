@@ -40,6 +40,7 @@ fn read(p: &Path) -> Vec<u8> {
 mod ffmpeg;
 mod refusals;
 mod resume;
+mod world;
 
 #[test]
 fn every_view_equals_a_run_of_its_own() {
