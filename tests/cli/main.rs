@@ -1,6 +1,10 @@
 //! End to end through the real binary: the original invocations and their GNU long forms,
-//! `.npy` side outputs, known pixels, rejected input and arguments, `-h`, `compare`.
-//! Every test works in its own fresh temp folder, with the scene copied into it.
+//! `.npy` side outputs, known pixels, rejected input and arguments, `-h`, `compare`; and, a
+//! module each, what were test binaries of their own (flags, outputs, meshes, PLY, standard
+//! input, concurrent and stale runs, determinism, methods...): one binary links once, where each
+//! file of its own cost a link with thin LTO. `tests/hardening/` and `tests/views_cli/` are the
+//! other binaries that run the command line. Every test works in its own fresh temp folder,
+//! with the scene copied into it.
 
 #[path = "../common/mod.rs"]
 mod common;
@@ -31,8 +35,23 @@ fn ok(dir: &TempDir, args: &[&str]) -> std::process::Output {
     o
 }
 
+#[path = "../ply_write/mod.rs"]
+mod ply_write;
+
+mod binary_input;
+mod camera_flags;
+mod compare_cli;
+mod concurrent;
+mod determinism;
+mod flags;
 mod help_compare;
 mod invocations;
+mod mesh;
+mod methods;
 mod npy;
+mod outputs;
+mod ply_cli;
 mod rejected;
+mod stale;
 mod stats;
+mod stdin;

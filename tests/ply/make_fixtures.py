@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes the PLY fixtures of this folder (run from anywhere; rewrites them all).
 
-Each file's second header line is `comment expect: WHERE: TEXT`, which tests/ply_cli.rs checks
+Each file's second header line is `comment expect: WHERE: TEXT`, which tests/cli/ply_cli.rs checks
 against the error message: `line N` (the header or an ASCII body line: `FILE:N: TEXT`) or
 `byte N` (a binary body: `FILE: at byte N: TEXT`). Files named `valid_*` must render. The byte
 offsets are computed here from the layout written, independently of lanecast."""

@@ -3,7 +3,7 @@
 //! so the set left behind is always one run's whole set; runs on disjoint sets in one folder
 //! all complete; a run that cannot get a lock within the bound exits 75 and writes nothing.
 
-mod common;
+use crate::common;
 
 use common::*;
 use std::fs;

@@ -1,7 +1,7 @@
 //! Output is a function of the input alone: the same image at any thread count and on every
 //! run, and the colour seed is the only thing that changes random colours.
 
-mod common;
+use crate::common;
 
 use common::*;
 use lanecast::experimental::render::{Frame, Kernel, Setup};
@@ -80,7 +80,7 @@ fn a_different_seed_gives_different_colours_on_the_same_pixels() {
         for (a, b) in s1.pixels().zip(s2.pixels()) {
             assert_eq!(a.0 == [0, 0, 0], b.0 == [0, 0, 0], "scene{n}");
         }
-        // Ordered mode has no seed: a typed --seed is refused (tests/flags.rs).
+        // Ordered mode has no seed: a typed --seed is refused (tests/cli/flags.rs).
     }
 }
 

@@ -4,7 +4,7 @@
 //! or an interrupt leaves every previous output byte-identical and no temporary file. Also the
 //! exit code of a missing scene or mesh file, and what `--stats` records about the run.
 
-mod common;
+use crate::common;
 
 use common::*;
 use std::fs;

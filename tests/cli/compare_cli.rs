@@ -1,7 +1,7 @@
 //! `lanecast compare` through the real binary: where the unexcused pixels are, in the report
 //! and in the diff picture.
 
-mod common;
+use crate::common;
 
 use common::*;
 use std::path::Path;

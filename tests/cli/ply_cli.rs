@@ -3,8 +3,8 @@
 //! any case; and every malformed file in tests/ply/ is refused with exit 2, one message naming
 //! the file and its line or byte offset, and no output, whether named by `-i` or by a scene.
 
-mod common;
-mod ply_write;
+use crate::common;
+use crate::ply_write;
 
 use common::*;
 use lanecast::experimental::scene::mesh::load_obj;

@@ -1,7 +1,7 @@
 //! `--method` and `--precision` on the command line: every lab method renders through the
 //! binary and `compare` measures it; f64 packets match the oracle; invalid pairings are refused.
 
-mod common;
+use crate::common;
 
 use common::*;
 

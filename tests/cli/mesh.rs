@@ -1,7 +1,7 @@
 //! `mesh PATH` statements: OBJ triangles take consecutive ids, render like any triangle, and bad
 //! OBJ files are refused naming the OBJ file and line.
 
-mod common;
+use crate::common;
 
 use common::*;
 use lanecast::Accel;

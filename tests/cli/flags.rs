@@ -2,7 +2,7 @@
 //! cannot apply to the others is refused with exit 2 before any work, by a message that names
 //! it, says why, and names no flag the user did not type; the consistent combinations run.
 
-mod common;
+use crate::common;
 
 use common::*;
 use std::fs;

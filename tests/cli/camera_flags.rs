@@ -1,7 +1,7 @@
 //! `--eye`, `--look`, `--up`: each replaces that part of the scene's camera, with the camera
 //! line's own rules; bad values are refused naming the flag, before anything is written.
 
-mod common;
+use crate::common;
 
 use common::*;
 use std::fs;

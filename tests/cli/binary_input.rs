@@ -2,7 +2,7 @@
 //! file and the line of the NUL, without reading the rest (`-i /dev/zero` used to read 1 GiB
 //! before refusing on size).
 
-mod common;
+use crate::common;
 
 use common::*;
 use std::fs;

@@ -1,7 +1,7 @@
 //! `-i -`: the scene read from standard input renders as the same file would, its mesh paths
 //! relative to the working folder, its errors named `<stdin>`.
 
-mod common;
+use crate::common;
 
 use common::*;
 use std::io::Write;
