@@ -45,16 +45,10 @@ pub fn sort(
     quads: &mut Vec<[u32; 4]>,
     quad_ids: &mut Vec<i32>,
 ) {
-    let (lo, hi) = verts
-        .par_iter()
-        .fold(
-            || (DVec3::INFINITY, DVec3::NEG_INFINITY),
-            |(l, h), &p| (l.min(p), h.max(p)),
-        )
-        .reduce(
-            || (DVec3::INFINITY, DVec3::NEG_INFINITY),
-            |a, b| (a.0.min(b.0), a.1.max(b.1)),
-        );
+    let (lo, hi) = verts.par_iter().map(|&p| (p, p)).reduce(
+        || (DVec3::INFINITY, DVec3::NEG_INFINITY),
+        |a, b| (a.0.min(b.0), a.1.max(b.1)),
+    );
     let scale = DVec3::splat(((1u64 << 21) - 1) as f64) / (hi - lo).max(DVec3::splat(1e-300));
     let key = |c: DVec3| -> u64 {
         let q = ((c - lo) * scale).clamp(DVec3::ZERO, DVec3::splat(((1u64 << 21) - 1) as f64));

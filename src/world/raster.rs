@@ -323,7 +323,9 @@ fn hidden(k: &Cluster, view: &View, st: &Band) -> bool {
         let sy = view.t32.sy[y] as f64;
         for x in bx[0] as usize..=bx[1] as usize {
             let j = row + x;
-            if st.id[j] < 0 || st.flag[j] || st.loose[j] < f32::INFINITY {
+            // (what the flag pass will decide: a loose candidate that could beat the hit)
+            let loose = st.loose[j] <= st.t[j] * (1.0 + 2.0 * T_TIGHT as f32);
+            if st.id[j] < 0 || st.flag[j] || loose {
                 return false;
             }
             let sx = view.t32.sx[x] as f64;
@@ -410,6 +412,19 @@ fn raster_polygon<const N: usize>(
     st: &mut Band,
 ) {
     let p = v.map(|i| s.proj[i as usize]);
+    // most polygons of a cluster that reaches into this band lie outside it: their rows first
+    // (NaN rows, from vertices behind the eye, pass on to the full box test)
+    let (lo, hi) = p
+        .iter()
+        .fold((f32::INFINITY, f32::NEG_INFINITY), |(l, h), q| {
+            (l.min(q[1]), h.max(q[1]))
+        });
+    let m = view.margin;
+    if hi + m < st.y0 as f32 || lo - m > (st.y0 + st.rows - 1) as f32 {
+        if p.iter().all(|q| q[2] > NEAR_COS) {
+            return;
+        }
+    }
     let Some(bx) = view.polygon_box(p) else {
         return;
     };
