@@ -420,10 +420,9 @@ fn raster_polygon<const N: usize>(
             (l.min(q[1]), h.max(q[1]))
         });
     let m = view.margin;
-    if hi + m < st.y0 as f32 || lo - m > (st.y0 + st.rows - 1) as f32 {
-        if p.iter().all(|q| q[2] > NEAR_COS) {
-            return;
-        }
+    let outside = hi + m < st.y0 as f32 || lo - m > (st.y0 + st.rows - 1) as f32;
+    if outside && p.iter().all(|q| q[2] > NEAR_COS) {
+        return;
     }
     let Some(bx) = view.polygon_box(p) else {
         return;
