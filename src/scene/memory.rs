@@ -95,7 +95,7 @@ pub fn parse_scene_with(
     let files = MeshFiles::Memory(meshes);
     let scene =
         parse::parse_bytes_meshes(bytes, file, MAX_PRIMITIVES, chunk, files, &mut Vec::new())?;
-    range::f32_range(&scene)?;
+    range::f32_range_text(&scene, bytes)?;
     Ok(scene)
 }
 
@@ -112,6 +112,29 @@ pub fn parse_mesh_bytes(bytes: &[u8], file: &Path) -> Result<Scene> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A scene in memory (no file to read back) names the column of a range error as the
+    /// file on disk does: the browser's messages are the command line's.
+    #[test]
+    fn range_errors_in_memory_give_the_files_column() {
+        let path =
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/bad/f32_tiny_radius.sc");
+        let bytes = std::fs::read(&path).unwrap();
+        let from_disk = crate::scene::load_scene(&path).unwrap_err().to_string();
+        let in_memory = parse_scene_with(&bytes, &path.with_file_name("nowhere.sc"), &|_| None)
+            .unwrap_err()
+            .to_string();
+        let col = |m: &str| m.split(':').nth(2).map(str::to_string);
+        assert_eq!(
+            col(&from_disk),
+            col(&in_memory),
+            "{from_disk} / {in_memory}"
+        );
+        assert!(
+            col(&in_memory).is_some_and(|c| c.parse::<usize>().is_ok_and(|c| c > 1)),
+            "{in_memory}"
+        );
+    }
     use std::path::PathBuf;
 
     fn repo(p: &str) -> PathBuf {

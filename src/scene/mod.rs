@@ -54,7 +54,7 @@ pub fn load_scene_meshes(path: &Path) -> Result<(Scene, Vec<PathBuf>)> {
 /// paths are relative to its folder.
 pub fn parse_scene(text: &str, file: &Path) -> Result<Scene> {
     let scene = parse::parse_scene(text, file)?;
-    range::f32_range(&scene)?;
+    range::f32_range_text(&scene, text.as_bytes())?;
     Ok(scene)
 }
 

@@ -28,21 +28,40 @@ pub fn f32_range(scene: &Scene) -> Result<(), Error> {
 
 /// [`f32_range`] for a camera at `eye` rather than the scene's own (a view of the scene).
 pub fn f32_range_from(scene: &Scene, eye: DVec3) -> Result<(), Error> {
+    outcome(scene, first_offender(scene, eye))
+}
+
+/// [`f32_range`] of a scene parsed from `text` in memory (the browser's scenes, Rust callers'
+/// strings): an error's column comes from that text, not from reading the file again.
+pub(crate) fn f32_range_text(scene: &Scene, text: &[u8]) -> Result<(), Error> {
+    outcome_in(scene, first_offender(scene, scene.camera.eye), Some(text))
+}
+
+/// The first primitive [`shape_f32`] refuses seen from `eye`, and why.
+fn first_offender(scene: &Scene, eye: DVec3) -> Option<(usize, String)> {
     // Checked on all threads; `find_first` keeps "the first offending primitive" exact.
     use crate::par::prelude::*;
-    let first = scene
+    scene
         .shapes
         .par_chunks(0..scene.shapes.len(), 1 << 12)
         .find_map_first(|(at, shapes)| {
             (shapes.enumerate())
                 .find_map(|(j, shape)| shape_f32(&shape, eye).err().map(|m| (at + j, m)))
-        });
-    outcome(scene, first)
+        })
 }
 
 /// The check's outcome when `first` is the first offending primitive and its message, if any:
 /// the error names it by its line (or, in a mesh rendered alone, by its face number).
 pub(crate) fn outcome(scene: &Scene, first: Option<(usize, String)>) -> Result<(), Error> {
+    outcome_in(scene, first, None)
+}
+
+/// [`outcome`], the columns read from `text` (the scene's bytes) when given.
+fn outcome_in(
+    scene: &Scene,
+    first: Option<(usize, String)>,
+    text: Option<&[u8]>,
+) -> Result<(), Error> {
     match first {
         // line 0: a mesh rendered alone, whose shapes are its faces
         Some((i, msg)) if scene.shapes.line(i) == 0 => Err(Error::InputFile {
@@ -57,7 +76,7 @@ pub(crate) fn outcome(scene: &Scene, first: Option<(usize, String)>) -> Result<(
                 Shape::Sphere { radius, .. } if radius < MIN_RADIUS => 4,
                 _ => 0,
             };
-            let col = token_col(&scene.source, line, token);
+            let col = token_col(&scene.source, text, line, token);
             Err(Error::input(&scene.source, line, col, msg))
         }
         None => Ok(()),
@@ -69,14 +88,20 @@ pub(crate) fn outcome(scene: &Scene, first: Option<(usize, String)>) -> Result<(
 /// token's for the primitive as a whole (`statement::Ctx::whole`). The scene keeps lines, not
 /// columns, so the line is read again: an error's cost only. 0 (no column) where the file
 /// cannot be read again (standard input).
-fn token_col(source: &Path, line: usize, token: usize) -> usize {
-    if source == Path::new(super::parse::STDIN_NAME) {
-        return 0;
-    }
-    let Ok(bytes) = std::fs::read(source) else {
-        return 0;
+fn token_col(source: &Path, text: Option<&[u8]>, line: usize, token: usize) -> usize {
+    let read;
+    let bytes: &[u8] = match text {
+        Some(t) => t,
+        None if source == Path::new(super::parse::STDIN_NAME) => return 0,
+        None => match std::fs::read(source) {
+            Ok(b) => {
+                read = b;
+                &read
+            }
+            Err(_) => return 0,
+        },
     };
-    let body = bytes.strip_prefix("\u{feff}".as_bytes()).unwrap_or(&bytes);
+    let body = bytes.strip_prefix("\u{feff}".as_bytes()).unwrap_or(bytes);
     let Some(r) = super::chunks::lines(body).nth(line.saturating_sub(1)) else {
         return 0;
     };
