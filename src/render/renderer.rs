@@ -31,6 +31,17 @@ impl Options {
     /// Fails when the options contradict each other: a method other than the default with a
     /// scalar kernel, or an acceleration with a brute-force method.
     pub fn check(&self) -> crate::Result<()> {
+        if self.accel == Accel::World {
+            let precision_only =
+                matches!(self.method, Method::Default | Method::Auto | Method::F64x4);
+            if self.kernel != Kernel::Packet || !precision_only {
+                return Err(crate::Error::usage(
+                    "--accel world has its own setup and kernels: it takes the default kernel \
+                     and method, and --precision chooses how they decide"
+                        .to_string(),
+                ));
+            }
+        }
         match (self.method, self.kernel) {
             (m, Kernel::Packet)
                 if m.is_brute_force()
@@ -325,6 +336,26 @@ impl<'s> Renderer<'s> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `--accel world` takes the default kernel and method (and f64x4: `--precision f64`), and
+    /// refuses the scalar kernels and the lab's methods.
+    #[test]
+    fn world_takes_the_precisions_and_refuses_the_rest() {
+        let with = |kernel, method| {
+            Options {
+                kernel,
+                accel: Accel::World,
+                method,
+            }
+            .check()
+        };
+        for m in [Method::Default, Method::Auto, Method::F64x4] {
+            assert!(with(Kernel::Packet, m).is_ok(), "{m:?}");
+        }
+        assert!(with(Kernel::ScalarF64, Method::Auto).is_err());
+        assert!(with(Kernel::ScalarF32, Method::Default).is_err());
+        assert!(with(Kernel::Packet, Method::Mt).is_err());
+    }
     use crate::camera::Camera;
     use std::path::Path;
 
