@@ -37,6 +37,38 @@ fn read(p: &Path) -> Vec<u8> {
     fs::read(p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
 }
 
+/// A one-view run of `scene` with the camera `[eye, look, up, fov]` at 96x64 through `accel`,
+/// into `one.bmp`, `one_i.npy` and `one_d.npy`.
+fn one_view(dir: &TempDir, scene: &str, camera: &[String; 4], accel: &str) {
+    let [eye, look, up, fov] = camera;
+    let o = run(
+        &dir.path,
+        &[
+            "-i",
+            scene,
+            "--eye",
+            eye,
+            "--look",
+            look,
+            "--up",
+            up,
+            "-fov",
+            fov,
+            "-size",
+            "96x64",
+            "--accel",
+            accel,
+            "-o",
+            "one.bmp",
+            "--ids",
+            "one_i.npy",
+            "--depth",
+            "one_d.npy",
+        ],
+    );
+    assert_success(&o, &format!("one view through {accel}"));
+}
+
 mod ffmpeg;
 mod refusals;
 mod resume;
@@ -75,33 +107,8 @@ fn every_view_equals_a_run_of_its_own() {
                     ],
                 );
                 assert_success(&o, &format!("{scene_s} {accel} {threads}"));
-                for (k, [eye, look, up, fov]) in flags.iter().enumerate() {
-                    let o = run(
-                        &dir.path,
-                        &[
-                            "-i",
-                            scene_s,
-                            "--eye",
-                            eye,
-                            "--look",
-                            look,
-                            "--up",
-                            up,
-                            "-fov",
-                            fov,
-                            "-size",
-                            "96x64",
-                            "--accel",
-                            "none",
-                            "-o",
-                            "one.bmp",
-                            "--ids",
-                            "one_i.npy",
-                            "--depth",
-                            "one_d.npy",
-                        ],
-                    );
-                    assert_success(&o, "one view");
+                for (k, camera) in flags.iter().enumerate() {
+                    one_view(&dir, scene_s, camera, "none");
                     let what = format!("{scene_s} view {k} accel {accel} threads {threads}");
                     for (many, one) in [
                         (format!("f{k}.bmp"), "one.bmp"),

@@ -45,33 +45,8 @@ fn world_views_depend_on_their_camera_alone() {
         world_views(&dir, scene_s, &reversed, "1", "b");
         world_views(&dir, scene_s, &views, "3", "c");
         let n = flags.len();
-        for (k, [eye, look, up, fov]) in flags.iter().enumerate() {
-            let o = run(
-                &dir.path,
-                &[
-                    "-i",
-                    scene_s,
-                    "--eye",
-                    eye,
-                    "--look",
-                    look,
-                    "--up",
-                    up,
-                    "-fov",
-                    fov,
-                    "-size",
-                    "96x64",
-                    "--accel",
-                    "world",
-                    "-o",
-                    "one.bmp",
-                    "--ids",
-                    "one_i.npy",
-                    "--depth",
-                    "one_d.npy",
-                ],
-            );
-            assert_success(&o, "one view");
+        for (k, camera) in flags.iter().enumerate() {
+            one_view(&dir, scene_s, camera, "world");
             let r = n - 1 - k;
             for (kind, one) in [("f", "one.bmp"), ("i", "one_i.npy"), ("d", "one_d.npy")] {
                 let ext = if kind == "f" { "bmp" } else { "npy" };
