@@ -276,14 +276,24 @@ fn band(
     }
     let mut best = Vec::new();
     if any {
-        best = vec![Hit::<f64>::NONE; n];
+        // each flagged pixel's oracle ray, once, beside its nearest f64 hit
+        best = (0..n)
+            .map(|k| {
+                let d = if st.flag[k] {
+                    view.t64.dir_x1(k % w, st.y0 + k / w)
+                } else {
+                    [0.0; 3]
+                };
+                (Hit::<f64>::NONE, d)
+            })
+            .collect();
         for &(v, n, id, bx) in &st.polys {
             redecide_polygon(world, v, n, id, bx, view, &st, &mut best);
         }
         for &(c, r, id, bx) in &st.spheres {
             if flagged(bx, &st) {
                 let k = SphereK::new(c, r, view.eye);
-                redecide_box(bx, id, view, &st, &mut best, |d| sphere_x1(&k, d));
+                redecide_box(bx, id, &st, &mut best, |d| sphere_x1(&k, d));
             }
         }
     }
@@ -293,8 +303,8 @@ fn band(
         for x in 0..w {
             let k = y * w + x;
             if any && st.flag[k] {
-                ids[k] = best[k].id;
-                depth[k] = best[k].t as f32;
+                ids[k] = best[k].0.id;
+                depth[k] = best[k].0.t as f32;
                 redone.push(st.y0 * w + k);
             } else if st.id[k] >= 0 {
                 let sx = view.t32.sx[x];
@@ -536,7 +546,7 @@ fn redecide_polygon(
     bx: [u16; 4],
     view: &View,
     st: &Band,
-    best: &mut [Hit<f64>],
+    best: &mut [(Hit<f64>, [f64; 3])],
 ) {
     if !flagged(bx, st) {
         return;
@@ -548,8 +558,8 @@ fn redecide_polygon(
         PolyK::<f64, 4>::quad(&[w[0], w[1], w[2], w[3]], view.eye).map(Known::Quad)
     };
     match k {
-        Some(Known::Tri(k)) => redecide_box(bx, id, view, st, best, |d| polygon_x1(&k, d)),
-        Some(Known::Quad(k)) => redecide_box(bx, id, view, st, best, |d| polygon_x1(&k, d)),
+        Some(Known::Tri(k)) => redecide_box(bx, id, st, best, |d| polygon_x1(&k, d)),
+        Some(Known::Quad(k)) => redecide_box(bx, id, st, best, |d| polygon_x1(&k, d)),
         None => {}
     }
 }
@@ -571,19 +581,19 @@ fn flagged(bx: [u16; 4], st: &Band) -> bool {
 fn redecide_box(
     bx: [u16; 4],
     id: i32,
-    view: &View,
     st: &Band,
-    best: &mut [Hit<f64>],
+    best: &mut [(Hit<f64>, [f64; 3])],
     test: impl Fn([f64; 3]) -> Option<f64>,
 ) {
     let (x0, x1) = (bx[0] as usize, bx[1] as usize);
     for y in st.rows(bx) {
         let row = (y - st.y0) * st.x;
         for x in x0..=x1 {
+            let (hit, d) = &mut best[row + x];
             if st.flag[row + x]
-                && let Some(t) = test(view.t64.dir_x1(x, y))
+                && let Some(t) = test(*d)
             {
-                best[row + x].update(t, id);
+                hit.update(t, id);
             }
         }
     }
