@@ -145,8 +145,9 @@ impl View {
     }
 }
 
-/// One band's per-pixel state.
-struct Band {
+/// One band's per-pixel state, kept in [`Scratch`] from view to view.
+#[derive(Debug, Default)]
+pub(crate) struct Band {
     x: usize,
     y0: usize,
     rows: usize,
@@ -159,12 +160,40 @@ struct Band {
     flag: Vec<bool>,
     /// The polygons (vertex indices, 3 or 4, and id) and spheres whose test ran at some pixel
     /// of the band, with their boxes: every primitive the oracle may hit here (the outline
-    /// test leaves out only pixels no primitive's exact test accepts).
+    /// test leaves out only pixels no primitive's exact test accepts, and a polygon is passed
+    /// over only where a trusted nearer hit is proven, [`hidden`]).
     polys: Vec<([u32; 4], u8, i32, [u16; 4])>,
     spheres: Vec<(DVec3, f64, i32, [u16; 4])>,
+    /// The front items, nearest first.
+    front: Vec<(f64, u32)>,
+    /// Polygons facing away from the eye, waiting for every polygon facing it: (index in its
+    /// kind's arrays, quad).
+    waiting: Vec<(u32, bool)>,
+    /// Each flagged pixel's nearest f64 hit and oracle ray.
+    best: Vec<(Hit<f64>, [f64; 3])>,
 }
 
 impl Band {
+    /// Band `b`'s state for a fresh view, every pixel flagged when `flag`.
+    fn reset(&mut self, w: usize, b: usize, rows: usize, flag: bool) {
+        let n = rows * w;
+        (self.x, self.y0, self.rows) = (w, b * BAND, rows);
+        let fill = |v: &mut Vec<_>, x| {
+            v.clear();
+            v.resize(n, x);
+        };
+        fill(&mut self.t, f32::INFINITY);
+        fill(&mut self.loose, f32::INFINITY);
+        self.id.clear();
+        self.id.resize(n, -1);
+        self.flag.clear();
+        self.flag.resize(n, flag);
+        self.polys.clear();
+        self.spheres.clear();
+        self.front.clear();
+        self.waiting.clear();
+    }
+
     #[inline(always)]
     fn rows(&self, b: [u16; 4]) -> std::ops::Range<usize> {
         (b[2] as usize).max(self.y0)..(b[3] as usize + 1).min(self.y0 + self.rows)
@@ -176,93 +205,107 @@ impl Band {
 pub fn bands(
     world: &World,
     view: &View,
-    s: &Scratch,
+    s: &mut Scratch,
     precision: Precision,
     frame: &mut Frame<f32>,
 ) -> Vec<usize> {
     let w = view.w;
+    let mut states = std::mem::take(&mut s.bands);
+    states.resize_with(view.bands(), Band::default);
+    let shared = &*s;
     let redone: Vec<Vec<usize>> = frame
         .ids
         .par_chunks_mut(BAND * w)
         .zip(frame.depth.par_chunks_mut(BAND * w))
+        .zip(states.par_iter_mut())
         .enumerate()
-        .map(|(b, (ids, depth))| band(world, view, s, precision, b, ids, depth))
+        .map(|(b, ((ids, depth), st))| band(world, view, shared, precision, b, st, ids, depth))
         .collect();
+    s.bands = states;
     redone.concat()
 }
 
-/// The polygons of a cluster of kind `N`: their vertex indices and ids.
-#[inline(always)]
-fn members<'w, const N: usize>(
-    polys: &'w [[u32; N]],
-    ids: &'w [i32],
-    shape: &'w [f32],
-    k: &Cluster,
-) -> impl Iterator<Item = ([u32; N], i32, f32)> + 'w {
-    let r = k.first as usize..(k.first + k.len) as usize;
-    (polys[r.clone()].iter().copied())
-        .zip(ids[r.clone()].iter().copied())
-        .zip(shape[r].iter().copied())
-        .map(|((v, id), g)| (v, id, g))
-}
-
+/// The order a band takes its items in, so that what is drawn first can prove the rest hidden:
+/// 1. the front items (clusters with a polygon that may face the eye, and spheres), nearest
+///    first; a cluster whose box already holds proven nearer hits ([`hidden`]) is passed over,
+///    and the polygons of the others that face away from the eye wait;
+/// 2. the deferred clusters not proven hidden: every polygon of theirs waits too;
+/// 3. the waiting polygons, each passed over where every pixel it may cover holds a proven
+///    nearer hit ([`proven_nearer`]): on a closed mesh, the back faces.
+///
+/// Passing over is exact: a primitive passed over at a pixel is farther there, in f32 and in
+/// f64, than a trusted hit of a polygon the band keeps, so neither the f32 answer nor the f64
+/// re-decision (a minimum over the band's polygons) could have chosen it. The order is fixed
+/// by the scene and the camera (nearest point, then index), never by the threads.
+#[allow(clippy::too_many_arguments)]
 fn band(
     world: &World,
     view: &View,
     s: &Scratch,
     precision: Precision,
     b: usize,
+    st: &mut Band,
     ids: &mut [i32],
     depth: &mut [f32],
 ) -> Vec<usize> {
     let w = view.w;
     let rows = ids.len() / w;
     let n = rows * w;
-    let mut st = Band {
-        x: w,
-        y0: b * BAND,
-        rows,
-        t: vec![f32::INFINITY; n],
-        id: vec![-1; n],
-        loose: vec![f32::INFINITY; n],
-        flag: vec![precision == Precision::F64; n],
-        polys: Vec::new(),
-        spheres: Vec::new(),
-    };
-    let list = |deferred: bool| {
-        s.bins.iter().flat_map(move |c| {
-            c[b].iter()
-                .filter(move |e| e.1 == deferred)
-                .map(|e| e.0 as usize)
-        })
-    };
-    let render = |st: &mut Band, item: Item| match item {
-        Item::Tris(k) => {
-            for (v, id, g) in members(&world.tris, &world.tri_ids, &world.tri_shape, &k) {
-                raster_polygon(v, id, g, view, s, st);
-            }
-        }
-        Item::Quads(k) => {
-            for (v, id, g) in members(&world.quads, &world.quad_ids, &world.quad_shape, &k) {
-                raster_polygon(v, id, g, view, s, st);
-            }
-        }
-        Item::Sphere(c, r, id) => raster_sphere(c, r, id, view, st),
-    };
-    for i in list(false) {
-        render(&mut st, world.item(i));
-    }
-    // Deferred clusters: rendered unless every pixel of their box holds a trusted hit nearer
-    // than their nearest point.
-    for i in list(true) {
-        let item = world.item(i);
-        let (Item::Tris(k) | Item::Quads(k)) = item else {
-            unreachable!("only clusters are deferred")
+    st.reset(w, b, rows, precision == Precision::F64);
+    for e in s.bins.iter().flat_map(|c| c[b].iter()).filter(|e| !e.1) {
+        let near = match world.item(e.0 as usize) {
+            Item::Tris(k) | Item::Quads(k) => k.nearest(view.eye),
+            Item::Sphere(..) => f64::NEG_INFINITY,
         };
-        if !hidden(&k, view, &st) {
-            render(&mut st, item);
+        st.front.push((near, e.0));
+    }
+    st.front
+        .sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    let front = std::mem::take(&mut st.front);
+    for &(_, i) in &front {
+        match world.item(i as usize) {
+            Item::Tris(k) if !hidden(&k, view, st) => {
+                for p in k.first..k.first + k.len {
+                    let i = p as usize;
+                    let (v, id, g) = (world.tris[i], world.tri_ids[i], world.tri_shape[i]);
+                    raster_polygon(v, id, g, Some((p, false)), view, s, st);
+                }
+            }
+            Item::Quads(k) if !hidden(&k, view, st) => {
+                for p in k.first..k.first + k.len {
+                    let i = p as usize;
+                    let (v, id, g) = (world.quads[i], world.quad_ids[i], world.quad_shape[i]);
+                    raster_polygon(v, id, g, Some((p, true)), view, s, st);
+                }
+            }
+            Item::Sphere(c, r, id) => raster_sphere(c, r, id, view, st),
+            _ => {}
         }
     }
+    st.front = front;
+    for e in s.bins.iter().flat_map(|c| c[b].iter()).filter(|e| e.1) {
+        let (quad, k) = match world.item(e.0 as usize) {
+            Item::Tris(k) => (false, k),
+            Item::Quads(k) => (true, k),
+            Item::Sphere(..) => unreachable!("only clusters are deferred"),
+        };
+        if !hidden(&k, view, st) {
+            st.waiting
+                .extend((k.first..k.first + k.len).map(|p| (p, quad)));
+        }
+    }
+    let waiting = std::mem::take(&mut st.waiting);
+    for &(p, quad) in &waiting {
+        let i = p as usize;
+        if quad {
+            let (v, id, g) = (world.quads[i], world.quad_ids[i], world.quad_shape[i]);
+            raster_polygon(v, id, g, None, view, s, st);
+        } else {
+            let (v, id, g) = (world.tris[i], world.tri_ids[i], world.tri_shape[i]);
+            raster_polygon(v, id, g, None, view, s, st);
+        }
+    }
+    st.waiting = waiting;
     // Which pixels the f32 answer is not trusted at.
     let mut any = false;
     if precision != Precision::F32 {
@@ -274,26 +317,25 @@ fn band(
             any |= f;
         }
     }
-    let mut best = Vec::new();
+    let mut best = std::mem::take(&mut st.best);
     if any {
         // each flagged pixel's oracle ray, once, beside its nearest f64 hit
-        best = (0..n)
-            .map(|k| {
-                let d = if st.flag[k] {
-                    view.t64.dir_x1(k % w, st.y0 + k / w)
-                } else {
-                    [0.0; 3]
-                };
-                (Hit::<f64>::NONE, d)
-            })
-            .collect();
+        best.clear();
+        best.extend((0..n).map(|k| {
+            let d = if st.flag[k] {
+                view.t64.dir_x1(k % w, st.y0 + k / w)
+            } else {
+                [0.0; 3]
+            };
+            (Hit::<f64>::NONE, d)
+        }));
         for &(v, n, id, bx) in &st.polys {
-            redecide_polygon(world, v, n, id, bx, view, &st, &mut best);
+            redecide_polygon(world, v, n, id, bx, view, st, &mut best);
         }
         for &(c, r, id, bx) in &st.spheres {
-            if flagged(bx, &st) {
+            if flagged(bx, st) {
                 let k = SphereK::new(c, r, view.eye);
-                redecide_box(bx, id, &st, &mut best, |d| sphere_x1(&k, d));
+                redecide_box(bx, id, st, &mut best, |d| sphere_x1(&k, d));
             }
         }
     }
@@ -316,36 +358,56 @@ fn band(
             }
         }
     }
+    st.best = best;
     redone
 }
 
+/// Whether pixel `j` of the band (column `x`, row `y`) holds a trusted f32 hit (tight, no
+/// loose candidate that could beat it, not flagged) whose distance, with its error bound, is
+/// below `near`. Then no primitive whose points all lie at `near` or farther can be the
+/// nearest there, in f32 or in f64.
+#[inline(always)]
+fn proven_nearer(st: &Band, view: &View, x: usize, y: usize, j: usize, near: f64) -> bool {
+    // (what the flag pass will decide: a loose candidate that could beat the hit)
+    let loose = st.loose[j] <= st.t[j] * (1.0 + 2.0 * T_TIGHT as f32);
+    if st.id[j] < 0 || st.flag[j] || loose {
+        return false;
+    }
+    let (sx, sy) = (view.t32.sx[x] as f64, view.t32.sy[y] as f64);
+    let t = st.t[j] as f64 * (1.0 + sx * sx + sy * sy).sqrt();
+    !t.is_nan() && t * (1.0 + 4.0 * T_TIGHT) < near
+}
+
 /// Whether cluster `k` is proven hidden in this band: every pixel of its box (in the band)
-/// holds a trusted f32 hit (tight, no loose candidate, not flagged) whose distance, with its
-/// error bound, is below the cluster's nearest point. Then no primitive of the cluster can be
-/// the nearest there, in f32 or in f64.
+/// holds a proven nearer hit than the cluster's nearest point.
 fn hidden(k: &Cluster, view: &View, st: &Band) -> bool {
     let Some(bx) = view.sphere_box(k.centre, k.radius) else {
         return true;
     };
     let near = k.nearest(view.eye);
-    for y in st.rows(bx) {
+    st.rows(bx).all(|y| {
         let row = (y - st.y0) * st.x;
-        let sy = view.t32.sy[y] as f64;
-        for x in bx[0] as usize..=bx[1] as usize {
-            let j = row + x;
-            // (what the flag pass will decide: a loose candidate that could beat the hit)
-            let loose = st.loose[j] <= st.t[j] * (1.0 + 2.0 * T_TIGHT as f32);
-            if st.id[j] < 0 || st.flag[j] || loose {
-                return false;
-            }
-            let sx = view.t32.sx[x] as f64;
-            let t = st.t[j] as f64 * (1.0 + sx * sx + sy * sy).sqrt();
-            if t.is_nan() || t * (1.0 + 4.0 * T_TIGHT) >= near {
-                return false;
-            }
+        (bx[0] as usize..=bx[1] as usize).all(|x| proven_nearer(st, view, x, y, row + x, near))
+    })
+}
+
+/// A lower bound on the distance from the eye to any point of the polygon with eye-relative
+/// f32 vertices `a`: every point lies within the polygon's diameter of each vertex, so it is
+/// at least `max |a_i| - diam` away. Evaluated in f64 from the f32 vectors (exactly enough);
+/// `a_i` is within 0.87u|a_i| of the exact vertex, so the exact bound is lower by at most 3uM
+/// (M = max |a_i|), and 1e-6 M is taken off.
+#[inline(always)]
+fn nearest<const N: usize>(a: &[[f32; 3]; N]) -> f64 {
+    let d = a.map(|v| v.map(f64::from));
+    let len = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    let m = d.iter().fold(0.0f64, |m, &v| m.max(len(v)));
+    let mut diam = 0.0f64;
+    for i in 0..N {
+        for j in i + 1..N {
+            diam = diam.max(len(std::array::from_fn(|c| d[i][c] - d[j][c])));
         }
     }
-    true
+    m - diam - 1e-6 * m
 }
 
 /// Pixels a polygon's box may hold before the 2D outline test is skipped (the exact test
@@ -412,11 +474,16 @@ fn outline<const N: usize>(
 /// operations.
 const OUTLINE_REL: f32 = 2e-6;
 
+/// Polygon `v` (id `id`, shape factor `g`) in this band. In the front pass (`front` names the
+/// polygon: its index and whether it is a quad) a polygon facing away from the eye waits
+/// ([`band`]); a waiting polygon (`front` is `None`) is passed over when every pixel it may
+/// cover holds a proven nearer hit.
 #[inline(always)]
 fn raster_polygon<const N: usize>(
     v: [u32; N],
     id: i32,
     g: f32,
+    front: Option<(u32, bool)>,
     view: &View,
     s: &Scratch,
     st: &mut Band,
@@ -434,6 +501,13 @@ fn raster_polygon<const N: usize>(
     if outside && p.iter().all(|q| q[2] > NEAR_COS) {
         return;
     }
+    let a = v.map(|i| s.rel[i as usize]);
+    if let Some(me) = front
+        && setup::faces_away(&a)
+    {
+        st.waiting.push(me);
+        return;
+    }
     let Some(bx) = view.polygon_box(p) else {
         return;
     };
@@ -445,7 +519,24 @@ fn raster_polygon<const N: usize>(
     if picked == Some(0) {
         return;
     }
-    let k = setup::polygon(v.map(|i| s.rel[i as usize]), g, &view.basis);
+    if front.is_none() {
+        let near = nearest(&a);
+        let covered = match picked {
+            Some(n) => cand[..n].iter().all(|&j| {
+                let j = j as usize;
+                proven_nearer(st, view, j % st.x, st.y0 + j / st.x, j, near)
+            }),
+            None => st.rows(bx).all(|y| {
+                let row = (y - st.y0) * st.x;
+                (bx[0] as usize..=bx[1] as usize)
+                    .all(|x| proven_nearer(st, view, x, y, row + x, near))
+            }),
+        };
+        if covered {
+            return;
+        }
+    }
+    let k = setup::polygon(a, g, &view.basis);
     let mut v4 = [v[0]; 4];
     v4[..N].copy_from_slice(&v);
     st.polys.push((v4, N as u8, id, bx));

@@ -136,6 +136,19 @@ impl Basis {
 
 const OPAQUE: f32 = 0.0;
 
+/// Whether the polygon with eye-relative vertices `a` faces away from the eye by its winding
+/// (the normal `raw` below, against `a_0`), in f32. Only an order of work depends on it
+/// (`raster`), never an answer, so its rounding near edge-on is harmless.
+#[inline(always)]
+pub fn faces_away<const N: usize>(a: &[[f32; 3]; N]) -> bool {
+    let (e1, e2) = if N == 3 {
+        (sub(a[1], a[0]), sub(a[2], a[0]))
+    } else {
+        (sub(a[2], a[0]), sub(a[3], a[1]))
+    };
+    dot(a[0], cross(e1, e2)) > 0.0
+}
+
 /// The constants of the polygon with eye-relative vertices `a` (perimeter order).
 ///
 /// `g` is the polygon's shape factor, `diam / sin(alpha)` ([`shape`]), computed once per scene.
