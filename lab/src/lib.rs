@@ -11,6 +11,7 @@
 //!   throughput;
 //! - `report.rs`: the Markdown table, the chart (plotters), the error images.
 
+pub mod bvh_spike;
 pub mod measure;
 pub mod report;
 
