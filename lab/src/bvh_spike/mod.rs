@@ -16,5 +16,8 @@
 //! not bounded), no range check of the scene seen from each eye.
 
 pub mod build;
+pub mod traverse;
+pub mod triangle;
 
 pub use build::{Bvh, Node};
+pub use traverse::{Counts, Variant, render};
