@@ -37,12 +37,25 @@ pub struct Node {
     pub axis: u16,
 }
 
-/// A triangle as the tile test reads it: its f32 vertices and the scene id.
+/// A triangle as the tile test reads it: its f32 vertices, the scene id, and which of its
+/// edges run in their canonical direction (`triangle::EdgeSetup`).
 #[derive(Debug, Clone, Copy)]
 #[repr(C)]
 pub struct Tri {
     pub v: [Vec3; 3],
     pub id: i32,
+    /// Bit `i`: edge `v_i -> v_{i+1}` starts at the lexicographically smaller vertex.
+    pub canon: u32,
+}
+
+impl Tri {
+    /// The triangle of f32 vertices `v` with scene id `id`.
+    pub fn new(v: [Vec3; 3], id: i32) -> Tri {
+        let canon = (0..3).fold(0, |bits, i| {
+            bits | (super::triangle::before(v[i], v[(i + 1) % 3]) as u32) << i
+        });
+        Tri { v, id, canon }
+    }
 }
 
 /// The hierarchy: node 0 is the root; leaves index `tris`, stored in leaf order.
@@ -178,10 +191,7 @@ impl Bvh {
         let nodes = build_par(&prims, &mut items, 0);
         let tris = items
             .par_iter()
-            .map(|&i| Tri {
-                v: verts[i as usize].map(|p| p.as_vec3()),
-                id: i as i32,
-            })
+            .map(|&i| Tri::new(verts[i as usize].map(|p| p.as_vec3()), i as i32))
             .collect();
         Ok(Bvh { nodes, tris })
     }

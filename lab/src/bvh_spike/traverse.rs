@@ -10,7 +10,8 @@
 //!   eye than every lane's nearest hit is skipped; with unit directions `t` is the distance).
 //!   Leaves get the packets' slab test, which picks the rows a leaf can touch.
 //!
-//! Both visit children nearest first: by the split axis and the sign of the tile's centre
+//! Both skip a tile whose frustum misses the root's box before making its rays, and visit
+//! children nearest first: by the split axis and the sign of the tile's centre
 //! direction on it (the left child holds the lower centroids).
 //!
 //! Conservativeness: the slab test's far distance is scaled by `1 + 2 gamma_3` (Ize 2013;
@@ -94,20 +95,8 @@ struct Tile {
 }
 
 impl Tile {
-    fn new(cam: &Camera, tables: &RayTables<f32>, o: Vec3, x0: usize, y0: usize) -> Tile {
-        let sx = f32x8::from(<[f32; 8]>::try_from(&tables.sx[x0..x0 + 8]).unwrap());
-        let d: [[f32x8; 3]; TILE] =
-            std::array::from_fn(|k| tables.dir_x8(sx, f32x8::splat(tables.sy[y0 + k])));
-        let inv = d.map(|d| {
-            d.map(|c| {
-                let tiny = f32x8::splat(1e-30);
-                let c = c
-                    .abs()
-                    .simd_lt(tiny)
-                    .select(c.is_sign_negative().select(-tiny, tiny), c);
-                f32x8::ONE / c
-            })
-        });
+    /// The tile at (`x0`, `y0`): its frustum; its rays wait for [`Tile::rays`].
+    fn new(cam: &Camera, o: Vec3, x0: usize, y0: usize) -> Tile {
         // the frustum, in f64, 0.01 pixel outside the outer pixel centres
         let (w, h) = (cam.width as usize, cam.height as usize);
         let (x1, y1) = ((x0 + TILE - 1).min(w - 1), (y0 + TILE - 1).min(h - 1));
@@ -127,8 +116,8 @@ impl Tile {
         });
         Tile {
             o,
-            d,
-            inv,
+            d: [[f32x8::ZERO; 3]; TILE],
+            inv: [[f32x8::ZERO; 3]; TILE],
             t: [f32x8::splat(f32::INFINITY); TILE],
             id: [[-1; 8]; TILE],
             planes,
@@ -138,6 +127,23 @@ impl Tile {
                 ..Counts::default()
             },
         }
+    }
+
+    /// The tile's 64 rays from the library's f32 ray tables, and their reciprocals (a component
+    /// under 1e-30 taken as +-1e-30).
+    fn rays(&mut self, tables: &RayTables<f32>, x0: usize, y0: usize) {
+        let sx = f32x8::from(<[f32; 8]>::try_from(&tables.sx[x0..x0 + 8]).unwrap());
+        self.d = std::array::from_fn(|k| tables.dir_x8(sx, f32x8::splat(tables.sy[y0 + k])));
+        self.inv = self.d.map(|d| {
+            d.map(|c| {
+                let tiny = f32x8::splat(1e-30);
+                let c = c
+                    .abs()
+                    .simd_lt(tiny)
+                    .select(c.is_sign_negative().select(-tiny, tiny), c);
+                f32x8::ONE / c
+            })
+        });
     }
 
     /// The packets of `mask` with a lane inside `node`'s box before its nearest hit.
@@ -289,7 +295,12 @@ pub fn render(bvh: &Bvh, camera: &Camera, variant: Variant) -> (Frame<f32>, Coun
             let mut stack = Vec::with_capacity(128);
             let mut counts = Counts::default();
             for x0 in (0..w).step_by(TILE) {
-                let mut tile = Tile::new(camera, &tables, o, x0, y0);
+                let mut tile = Tile::new(camera, o, x0, y0);
+                if !tile.frustum(&bvh.nodes[0], f32::INFINITY) {
+                    counts.tiles += 1;
+                    continue; // the frame's background already
+                }
+                tile.rays(&tables, x0, y0);
                 tile.trace(bvh, variant, &mut stack);
                 for k in 0..rows {
                     let n = TILE.min(w - x0);

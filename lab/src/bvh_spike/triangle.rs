@@ -40,32 +40,34 @@ pub struct EdgeSetup {
     pub id: i32,
 }
 
+/// The canonical order of two vertices: lexicographic on (x, y, z).
 #[inline]
-fn before(a: Vec3, b: Vec3) -> bool {
+pub fn before(a: Vec3, b: Vec3) -> bool {
     (a.x, a.y, a.z) < (b.x, b.y, b.z)
 }
 
 /// The normal of the plane through `o` and edge `p -> q`, `(p - o) x (q - p)`, computed as for
-/// the edge's canonical direction and negated when `p -> q` runs the other way.
-#[inline]
-fn edge(p: Vec3, q: Vec3, ap: Vec3, aq: Vec3) -> Vec3 {
-    if before(p, q) {
-        ap.cross(q - p)
-    } else {
-        -aq.cross(p - q)
-    }
+/// the edge's canonical direction (`canon`: `p -> q` is it) and negated when `p -> q` runs the
+/// other way. Operands picked by selects, not a branch: the direction is a coin toss per edge.
+#[inline(always)]
+fn edge(canon: bool, p: Vec3, q: Vec3, ap: Vec3, aq: Vec3) -> Vec3 {
+    let m = glam::BVec3::splat(canon);
+    let (start, end) = (Vec3::select(m, p, q), Vec3::select(m, q, p));
+    let n = Vec3::select(m, ap, aq).cross(end - start);
+    Vec3::select(m, n, -n)
 }
 
 impl EdgeSetup {
     /// `tri` seen from `o`.
-    #[inline]
+    #[inline(always)]
     pub fn new(tri: &Tri, o: Vec3) -> EdgeSetup {
         let [v0, v1, v2] = tri.v;
         let a = [v0 - o, v1 - o, v2 - o];
+        let c = |i: u32| tri.canon >> i & 1 == 1;
         let m = [
-            edge(v0, v1, a[0], a[1]),
-            edge(v1, v2, a[1], a[2]),
-            edge(v2, v0, a[2], a[0]),
+            edge(c(0), v0, v1, a[0], a[1]),
+            edge(c(1), v1, v2, a[1], a[2]),
+            edge(c(2), v2, v0, a[2], a[0]),
         ];
         let n = (v1 - v0).cross(v2 - v0);
         EdgeSetup {
@@ -137,7 +139,7 @@ mod tests {
             let scale = 10f32.powf(r.f() * 4.0 - 2.0);
             let v = [r.v() * scale, r.v() * scale, r.v() * scale];
             let o = r.v() * 10.0;
-            let tri = Tri { v, id: 7 };
+            let tri = Tri::new(v, 7);
             let s = EdgeSetup::new(&tri, o);
             let dirs: [Vec3; 8] = std::array::from_fn(|l| match (k + l) % 4 {
                 0 => (v[l % 3] - o).normalize(),
@@ -167,10 +169,7 @@ mod tests {
             let tris: Vec<Tri> = faces
                 .iter()
                 .enumerate()
-                .map(|(i, f)| Tri {
-                    v: f.map(|k| verts[k]),
-                    id: i as i32,
-                })
+                .map(|(i, f)| Tri::new(f.map(|k| verts[k]), i as i32))
                 .collect();
             let far = 3.0 + 1000.0 * r.f() * r.f();
             let o = r.v().normalize() * far;
