@@ -9,8 +9,12 @@
 //!
 //! - `measure.rs`: mismatches (ties, edge band, unexcused), holes, false hits, depth error,
 //!   throughput;
-//! - `report.rs`: the Markdown table, the chart (plotters), the error images.
+//! - `report.rs`: the Markdown table, the chart (plotters), the error images;
+//! - `bvh_spike/`: a world-space BVH traversed by pixel tiles, the many-view design measured
+//!   against `--accel world` and Embree (`examples/bvh_spike`, `scripts/bvh_spike_table.py`;
+//!   docs/architecture.md, "Many views: object order against a world-space BVH").
 
+pub mod bvh_spike;
 pub mod measure;
 pub mod report;
 
