@@ -53,34 +53,73 @@ impl Frame<f32> {
     /// `[x, y, z]` rows, row-major like [`Frame::ids`]; `[0, 0, 0]` for background. `scene` and
     /// `camera` are those the frame was rendered from (module comment: formulas, precision).
     pub fn normals(&self, scene: &Scene, camera: &Camera) -> Vec<[f32; 3]> {
-        let tables = camera.tables::<f64>(1, 1);
-        let w = self.width as usize;
-        let eye = camera.eye;
-        let normal = |i: usize| -> [f32; 3] {
-            let id = self.ids[i];
-            if id < 0 || id as usize >= scene.shapes.len() {
-                return [0.0; 3];
-            }
-            let n = match scene.shapes.get(id as usize) {
-                Shape::Triangle([a, b, c]) => facing((b - a).cross(c - a), a - eye),
-                Shape::Quad([a, b, c, d]) => facing((c - a).cross(d - b), a - eye),
-                Shape::Sphere { center, radius } => {
-                    let d = DVec3::from_array(tables.dir_x1(i % w, i / w));
-                    let p = eye + d * f64::from(self.depth[i]);
-                    let out = (p - center).normalize_or_zero();
-                    // seen from inside, the eye looks at the inner side
-                    if (eye - center).length() < radius {
-                        -out
-                    } else {
-                        out
-                    }
-                }
-            };
-            n.as_vec3().to_array()
-        };
+        let at = Surfaces::new(self, scene, camera);
         let mut out = Vec::with_capacity(self.ids.len());
-        out.par_extend((0..self.ids.len()).into_par_iter().map(normal));
+        out.par_extend((0..self.ids.len()).into_par_iter().map(|i| {
+            at.normal(i)
+                .map_or([0.0; 3], |(n, _)| n.as_vec3().to_array())
+        }));
         out
+    }
+
+    /// The headlight term of each pixel, `|n . d|` in `[0, 1]`: the cosine between its hit's
+    /// f64 normal (as [`Frame::normals`] gives it, before rounding to f32) and its unit f64
+    /// ray, 1 face-on and 0 at grazing incidence; 0 for background. What `-cm shade` lights a
+    /// surface by ([`crate::shade`]); rounded to f32 once.
+    pub fn headlight(&self, scene: &Scene, camera: &Camera) -> Vec<f32> {
+        let at = Surfaces::new(self, scene, camera);
+        let mut out = Vec::with_capacity(self.ids.len());
+        out.par_extend((0..self.ids.len()).into_par_iter().map(|i| {
+            at.normal(i)
+                .map_or(0.0, |(n, d)| n.dot(d).abs().min(1.0) as f32)
+        }));
+        out
+    }
+}
+
+/// What the per-pixel surface functions share: the frame, its scene, its camera's f64 rays.
+struct Surfaces<'a> {
+    frame: &'a Frame<f32>,
+    scene: &'a Scene,
+    tables: crate::camera::RayTables<f64>,
+    eye: DVec3,
+}
+
+impl<'a> Surfaces<'a> {
+    fn new(frame: &'a Frame<f32>, scene: &'a Scene, camera: &Camera) -> Self {
+        Surfaces {
+            frame,
+            scene,
+            tables: camera.tables::<f64>(1, 1),
+            eye: camera.eye,
+        }
+    }
+
+    /// Pixel `i`'s unit f64 normal facing the eye and its unit f64 ray; `None` for background
+    /// (or an id outside the scene). The one formula of the module comment.
+    fn normal(&self, i: usize) -> Option<(DVec3, DVec3)> {
+        let id = self.frame.ids[i];
+        if id < 0 || id as usize >= self.scene.shapes.len() {
+            return None;
+        }
+        let w = self.frame.width as usize;
+        let d = DVec3::from_array(self.tables.dir_x1(i % w, i / w));
+        let eye = self.eye;
+        let n = match self.scene.shapes.get(id as usize) {
+            Shape::Triangle([a, b, c]) => facing((b - a).cross(c - a), a - eye),
+            Shape::Quad([a, b, c, dd]) => facing((c - a).cross(dd - b), a - eye),
+            Shape::Sphere { center, radius } => {
+                let p = eye + d * f64::from(self.frame.depth[i]);
+                let out = (p - center).normalize_or_zero();
+                // seen from inside, the eye looks at the inner side
+                if (eye - center).length() < radius {
+                    -out
+                } else {
+                    out
+                }
+            }
+        };
+        Some((n, d))
     }
 }
 
