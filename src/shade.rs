@@ -338,7 +338,7 @@ mod tests {
 
     #[test]
     fn names_round_trip() {
-        for m in [ColorMode::Random, ColorMode::Ordered] {
+        for m in ColorMode::ALL {
             assert_eq!(ColorMode::parse(m.name()), Some(m));
         }
         for v in [Variation::Linear, Variation::Log] {
@@ -501,6 +501,82 @@ mod tests {
             1,
         );
         assert_eq!(px(&one, 0), px(&a, 17));
+    }
+
+    /// `shade`: grey times the headlight `L_MIN + (1 - L_MIN) |n . d|` times the dimming, for
+    /// random lights and depths; background black; the palette modes ignore a light given.
+    #[test]
+    fn shade_is_grey_times_the_headlight_times_the_dimming() {
+        let mut rng = crate::test_rng::Rng(0x5AADE);
+        for case in 0..200 {
+            let n = 1 + rng.below(40) as usize;
+            let ids: Vec<i32> = (0..n).map(|_| rng.below(5) as i32 - 1).collect();
+            let depth: Vec<f32> = ids
+                .iter()
+                .map(|&id| {
+                    if id < 0 {
+                        f32::INFINITY
+                    } else {
+                        1.0 + 99.0 * rng.unit() as f32
+                    }
+                })
+                .collect();
+            let light: Vec<f32> = (0..n).map(|_| rng.unit() as f32).collect();
+            for variation in [Variation::Linear, Variation::Log] {
+                let rgb = shade(
+                    &ids,
+                    &depth,
+                    Some(&light),
+                    n as u32,
+                    ColorMode::Shade,
+                    variation,
+                    7,
+                );
+                let bright = Brightness::new(&ids, &depth, variation);
+                for i in 0..n {
+                    let want = if ids[i] < 0 {
+                        [0; 3]
+                    } else {
+                        let b = bright.at(depth[i]) * (L_MIN + (1.0 - L_MIN) * f64::from(light[i]));
+                        scaled(SHADE_GREY, b)
+                    };
+                    assert_eq!(px(&rgb, i), want, "case {case} pixel {i}");
+                }
+                for mode in [ColorMode::Random, ColorMode::Ordered] {
+                    assert_eq!(
+                        shade(&ids, &depth, Some(&light), n as u32, mode, variation, 7),
+                        shade(&ids, &depth, None, n as u32, mode, variation, 7),
+                        "case {case}: {mode:?} ignores the light"
+                    );
+                }
+            }
+        }
+        // face-on at the nearest distance: full grey; edge-on: L_MIN of it
+        let rgb = shade(
+            &[0, 0],
+            &[2.0, 2.0],
+            Some(&[1.0, 0.0]),
+            2,
+            ColorMode::Shade,
+            Variation::Linear,
+            0,
+        );
+        assert_eq!(px(&rgb, 0), SHADE_GREY);
+        assert_eq!(px(&rgb, 1), scaled(SHADE_GREY, L_MIN));
+    }
+
+    #[test]
+    #[should_panic(expected = "shade mode needs each pixel's |n . d|")]
+    fn shade_without_the_light_is_a_programming_error() {
+        shade(
+            &[0],
+            &[1.0],
+            None,
+            1,
+            ColorMode::Shade,
+            Variation::Linear,
+            0,
+        );
     }
 
     #[test]
