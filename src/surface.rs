@@ -57,13 +57,7 @@ impl Frame<f32> {
     /// `[x, y, z]` rows, row-major like [`Frame::ids`]; `[0, 0, 0]` for background. `scene` and
     /// `camera` are those the frame was rendered from (module comment: formulas, precision).
     pub fn normals(&self, scene: &Scene, camera: &Camera) -> Vec<[f32; 3]> {
-        let at = Surfaces::new(self, scene, camera);
-        let mut out = Vec::with_capacity(self.ids.len());
-        out.par_extend((0..self.ids.len()).into_par_iter().map(|i| {
-            at.normal(i)
-                .map_or([0.0; 3], |(n, _)| n.as_vec3().to_array())
-        }));
-        out
+        Surfaces::new(self, scene, camera).map([0.0; 3], |n, _| n.as_vec3().to_array())
     }
 
     /// The headlight term of each pixel, `|n . d|` in `[0, 1]`: the cosine between its hit's
@@ -71,13 +65,7 @@ impl Frame<f32> {
     /// ray, 1 face-on and 0 at grazing incidence; 0 for background. What `-cm shade` lights a
     /// surface by ([`crate::shade`]); rounded to f32 once.
     pub fn headlight(&self, scene: &Scene, camera: &Camera) -> Vec<f32> {
-        let at = Surfaces::new(self, scene, camera);
-        let mut out = Vec::with_capacity(self.ids.len());
-        out.par_extend((0..self.ids.len()).into_par_iter().map(|i| {
-            at.normal(i)
-                .map_or(0.0, |(n, d)| n.dot(d).abs().min(1.0) as f32)
-        }));
-        out
+        Surfaces::new(self, scene, camera).map(0.0, |n, d| n.dot(d).abs().min(1.0) as f32)
     }
 }
 
@@ -99,31 +87,61 @@ impl<'a> Surfaces<'a> {
         }
     }
 
-    /// Pixel `i`'s unit f64 normal facing the eye and its unit f64 ray; `None` for background
-    /// (or an id outside the scene). The one formula of the module comment.
-    fn normal(&self, i: usize) -> Option<(DVec3, DVec3)> {
-        let id = self.frame.ids[i];
-        if id < 0 || id as usize >= self.scene.shapes.len() {
-            return None;
+    /// `f(n, d)` for every pixel that hit, `background` for the others, row-major: `n` the
+    /// hit's unit f64 normal facing the eye (the one formula of the module comment), `d` its
+    /// unit f64 ray. Rows run in parallel; along a row, a polygon's normal, which depends on its
+    /// id alone, is computed once per run of pixels that show it.
+    fn map<T: Copy + Send + Sync>(
+        &self,
+        background: T,
+        f: impl Fn(DVec3, DVec3) -> T + Sync + Send,
+    ) -> Vec<T> {
+        let (ids, w) = (&self.frame.ids, self.frame.width as usize);
+        let mut out = vec![background; ids.len()];
+        if ids.is_empty() {
+            return out;
         }
-        let w = self.frame.width as usize;
-        let d = DVec3::from_array(self.tables.dir_x1(i % w, i / w));
+        out.par_chunks_mut(w).enumerate().for_each(|(y, row)| {
+            let mut last: Option<(i32, DVec3)> = None;
+            for (x, o) in row.iter_mut().enumerate() {
+                let id = ids[y * w + x];
+                if id < 0 || id as usize >= self.scene.shapes.len() {
+                    continue;
+                }
+                let d = DVec3::from_array(self.tables.dir_x1(x, y));
+                let n = match last {
+                    Some((lid, n)) if lid == id => n,
+                    _ => {
+                        let (n, polygon) = self.normal(id, d, self.frame.depth[y * w + x]);
+                        last = polygon.then_some((id, n));
+                        n
+                    }
+                };
+                *o = f(n, d);
+            }
+        });
+        out
+    }
+
+    /// The unit f64 normal facing the eye of primitive `id`, hit at distance `t` along the unit
+    /// ray `d`, and whether it is a polygon's (the same for every ray that hits it).
+    fn normal(&self, id: i32, d: DVec3, t: f32) -> (DVec3, bool) {
         let eye = self.eye;
-        let n = match self.scene.shapes.get(id as usize) {
-            Shape::Triangle([a, b, c]) => facing((b - a).cross(c - a), a - eye),
-            Shape::Quad([a, b, c, dd]) => facing((c - a).cross(dd - b), a - eye),
+        match self.scene.shapes.get(id as usize) {
+            Shape::Triangle([a, b, c]) => (facing((b - a).cross(c - a), a - eye), true),
+            Shape::Quad([a, b, c, dd]) => (facing((c - a).cross(dd - b), a - eye), true),
             Shape::Sphere { center, radius } => {
-                let p = eye + d * f64::from(self.frame.depth[i]);
+                let p = eye + d * f64::from(t);
                 let out = (p - center).normalize_or_zero();
                 // seen from inside, the eye looks at the inner side
-                if (eye - center).length() < radius {
+                let n = if (eye - center).length() < radius {
                     -out
                 } else {
                     out
-                }
+                };
+                (n, false)
             }
-        };
-        Some((n, d))
+        }
     }
 }
 
