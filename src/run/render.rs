@@ -10,7 +10,6 @@ use crate::output::{self, OutputKind, OutputSet};
 use crate::progress;
 use crate::render::{Kernel, Options, Renderer};
 use crate::scene::Scene;
-use crate::shade::shade;
 use crate::stats::{Stats, scene_name, secs};
 use std::path::Path;
 use std::time::Instant;
@@ -89,28 +88,15 @@ pub(super) fn run_stats(s: &RenderSettings, outputs: Vec<(&'static str, String)>
     }
 }
 
-/// The frame shaded as `s` asks (`-cm`, `-cv`, `--seed`); `shade` mode lights each hit by
-/// its normal ([`crate::Frame::headlight`]), from the scene and camera the frame was rendered
-/// with.
+/// The frame shaded as `s` asks (`-cm`, `-cv`, `--seed`: [`Frame::rgb`], which lights each
+/// hit by its normal in `shade` mode), from the scene and camera it was rendered with.
 pub(super) fn shade_frame(
     s: &RenderSettings,
     frame: &Frame<f32>,
     scene: &Scene,
     camera: &Camera,
 ) -> Vec<u8> {
-    let light = s
-        .color_mode
-        .needs_light()
-        .then(|| frame.headlight(scene, camera));
-    shade(
-        &frame.ids,
-        &frame.depth,
-        light.as_deref(),
-        s.view.width,
-        s.color_mode,
-        s.variation,
-        s.seed,
-    )
+    frame.rgb(scene, camera, s.color_mode, s.variation, s.seed)
 }
 
 /// Writes a frame's outputs that `s` asks for into the temporary files of `set`: the image
