@@ -425,3 +425,25 @@ fn palette_modes_still_draw_readmes_seed_pictures() {
         fs::read(dir.join("q.png")).unwrap()
     );
 }
+
+/// README's mesh pictures are `-cm shade` renders of their scenes, as the command beside them
+/// says (`lanecast -i scenes/NAME.sc -o docs/scenes/NAME.png -cm shade`), pixel for pixel.
+#[test]
+fn readmes_mesh_pictures_are_shade_renders() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let dir = TempDir::new("surface-pictures");
+    for name in ["bunny", "teapot"] {
+        let scene = root.join(format!("scenes/{name}.sc"));
+        ok(
+            &dir,
+            &["-i", scene.to_str().unwrap(), "-o", "a.png", "-cm", "shade"],
+        );
+        let want = image_of(&root.join(format!("docs/scenes/{name}.png")), 640, 480);
+        let got = image_of(&dir.join("a.png"), 640, 480);
+        assert!(got == want, "{name}");
+        assert!(
+            got.pixels().all(|p| p[0] == p[1] && p[1] == p[2]),
+            "{name}: grey"
+        );
+    }
+}
