@@ -10,6 +10,7 @@ fn main() -> lanecast::Result<()> {
     let out = args.next().unwrap_or("out.png".into());
     let camera = Camera::for_scene(&scene, 640, 480, None)?; // the scene's fov, else 60 degrees
     let frame = Renderer::new(&scene, &camera, &Options::default())?.render();
-    frame.write_image(&out, ColorMode::Random, Variation::Linear, 0)?; // .png or .bmp
+    let (mode, variation) = (ColorMode::Random, Variation::Linear); // or -cm shade's look
+    frame.write_image(&out, (&scene, &camera), mode, variation, 0)?; // .png or .bmp
     frame.write_ids(&out.with_file_name("ids.npy")) // (height, width) little-endian i32
 }

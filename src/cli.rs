@@ -98,6 +98,10 @@ pub struct RenderSettings {
     pub seed: u64,
     pub ids: Option<PathBuf>,
     pub depth: Option<PathBuf>,
+    /// `--zdepth`: distances along the camera's forward axis (`Frame::z_depth`).
+    pub zdepth: Option<PathBuf>,
+    /// `--normals`: unit surface normals facing the camera (`Frame::normals`).
+    pub normals: Option<PathBuf>,
     pub repeat: u32,
     pub stats: Option<PathBuf>,
     /// Many views (`--views`, `--orbit`); `None` for the scene's one camera.
@@ -224,6 +228,8 @@ fn parse_raw(raw: &[OsString]) -> Result<Command> {
                 seed: r.seed,
                 ids: r.ids,
                 depth: r.depth,
+                zdepth: r.zdepth,
+                normals: r.normals,
                 repeat: r.repeat,
                 stats: r.stats,
                 stdout_format,
@@ -430,11 +436,16 @@ fn check_render(s: &RenderSettings, typed: &Typed, method_flag: &str) -> Result<
             count(n, "thread")
         )));
     }
-    if typed.has("seed") && s.color_mode == ColorMode::Ordered {
+    if typed.has("seed") && s.color_mode != ColorMode::Random {
+        let how = match s.color_mode {
+            ColorMode::Ordered => "colours by the palette",
+            _ => "shades every primitive the same grey",
+        };
         return Err(Error::usage(format!(
-            "--seed {}: --color-mode ordered colours by the palette, with no seed; --seed applies to the \
-             random colour mode only",
+            "--seed {}: --color-mode {} {how}, with no seed; --seed applies to the random \
+             colour mode only",
             s.seed,
+            s.color_mode.name(),
         )));
     }
     Ok(())

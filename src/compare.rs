@@ -289,6 +289,7 @@ pub fn marked_render(oracle: &Frame<f64>, mark: impl Fn(usize) -> Option<[u8; 3]
     let mut rgb = shade(
         &oracle.ids,
         &depth,
+        None,
         oracle.width,
         ColorMode::Random,
         Variation::Linear,

@@ -4,7 +4,9 @@
 
 use std::path::Path;
 
+use crate::camera::Camera;
 use crate::par::prelude::*;
+use crate::scene::Scene;
 use crate::shade::{ColorMode, Variation, shade};
 use crate::{Result, output};
 
@@ -68,10 +70,27 @@ impl<D> Frame<D> {
 
 impl Frame<f32> {
     /// The frame shaded to RGB, three bytes per pixel, row 0 at the top ([`shade`]: a colour per
-    /// primitive by `mode`, dimmed with distance by `variation`; `seed` varies the random
-    /// colours).
-    pub fn rgb(&self, mode: ColorMode, variation: Variation, seed: u64) -> Vec<u8> {
-        shade(&self.ids, &self.depth, self.width, mode, variation, seed)
+    /// primitive by `mode`, or `shade`'s headlight on the surfaces, dimmed with distance by
+    /// `variation`; `seed` varies the random colours). `scene` and `camera` are those the frame
+    /// was rendered from: `shade` mode lights each hit by its normal ([`Frame::headlight`]).
+    pub fn rgb(
+        &self,
+        scene: &Scene,
+        camera: &Camera,
+        mode: ColorMode,
+        variation: Variation,
+        seed: u64,
+    ) -> Vec<u8> {
+        let light = mode.needs_light().then(|| self.headlight(scene, camera));
+        shade(
+            &self.ids,
+            &self.depth,
+            light.as_deref(),
+            self.width,
+            mode,
+            variation,
+            seed,
+        )
     }
 
     /// Writes the frame shaded as [`Frame::rgb`] to a PNG or BMP image, by `path`'s extension
@@ -80,12 +99,13 @@ impl Frame<f32> {
     pub fn write_image(
         &self,
         path: &Path,
+        (scene, camera): (&Scene, &Camera),
         mode: ColorMode,
         variation: Variation,
         seed: u64,
     ) -> Result<()> {
         output::image_format(path)?; // before the work of shading
-        let rgb = self.rgb(mode, variation, seed);
+        let rgb = self.rgb(scene, camera, mode, variation, seed);
         output::write_image(path, self.width, self.height, &rgb)
     }
 
@@ -99,7 +119,7 @@ impl Frame<f32> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{Camera, Options, Renderer};
+    use crate::{Options, Renderer};
     use std::fs;
 
     /// What the frame writes is what the command line's functions give for its buffers, byte
@@ -116,7 +136,13 @@ mod tests {
         fs::create_dir_all(&dir).unwrap();
         let (png, ids, depth) = (dir.join("a.png"), dir.join("ids.npy"), dir.join("d.npy"));
         frame
-            .write_image(&png, ColorMode::Ordered, Variation::Log, 0)
+            .write_image(
+                &png,
+                (&scene, &camera),
+                ColorMode::Ordered,
+                Variation::Log,
+                0,
+            )
             .unwrap();
         frame.write_ids(&ids).unwrap();
         frame.write_depth(&depth).unwrap();
@@ -128,16 +154,26 @@ mod tests {
         let rgb = shade(
             &frame.ids,
             &frame.depth,
+            None,
             33,
             ColorMode::Ordered,
             Variation::Log,
             0,
         );
-        assert_eq!(frame.rgb(ColorMode::Ordered, Variation::Log, 0), rgb);
+        assert_eq!(
+            frame.rgb(&scene, &camera, ColorMode::Ordered, Variation::Log, 0),
+            rgb
+        );
         let back = image::open(&png).unwrap().to_rgb8();
         assert_eq!((back.width(), back.height()), (33, 17));
         assert_eq!(back.into_raw(), rgb);
-        let jpg = frame.write_image(&dir.join("a.jpg"), ColorMode::Random, Variation::Linear, 1);
+        let jpg = frame.write_image(
+            &dir.join("a.jpg"),
+            (&scene, &camera),
+            ColorMode::Random,
+            Variation::Linear,
+            1,
+        );
         assert!(matches!(jpg, Err(crate::Error::Usage(_))));
         let mut names: Vec<_> = fs::read_dir(&dir)
             .unwrap()

@@ -23,11 +23,12 @@
 //! assert_eq!(frame.ids[centre], 0); // the sphere, id 0
 //! assert!(frame.depth[centre] > 6.0 && frame.depth[centre] < 8.0);
 //! assert_eq!(frame.ids[0], -1); // top-left: background
-//! let rgb = frame.rgb(ColorMode::Ordered, Variation::Linear, 0);
+//! let rgb = frame.rgb(&scene, &camera, ColorMode::Shade, Variation::Linear, 0);
 //! assert_eq!(rgb.len(), 64 * 48 * 3);
 //! // Each file is written to a temporary file beside it, then renamed into place.
 //! let dir = std::env::temp_dir();
-//! frame.write_image(&dir.join("lanecast-doc.png"), ColorMode::Random, Variation::Linear, 0)?;
+//! let (mode, variation) = (ColorMode::Random, Variation::Linear);
+//! frame.write_image(&dir.join("lanecast-doc.png"), (&scene, &camera), mode, variation, 0)?;
 //! frame.write_ids(&dir.join("lanecast-doc-ids.npy"))?; // (48, 64) little-endian i32
 //! frame.write_depth(&dir.join("lanecast-doc-depth.npy"))?; // (48, 64) little-endian f32
 //! # for f in ["lanecast-doc.png", "lanecast-doc-ids.npy", "lanecast-doc-depth.npy"] {

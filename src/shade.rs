@@ -9,6 +9,7 @@
 //!   (splitmix64), so it is the same on every run and changes with `--seed`.
 //! - `ordered`: [`PALETTE`] (violet, blue, green, yellow, orange, red), cycling after six,
 //!   given to primitives in order of first appearance scanning rows from the top-left pixel.
+//! - `shade`: [`SHADE_GREY`] for every primitive, lit by a headlight (below).
 //!
 //! Brightness, by [`Variation`], with `tmin` and `tmax` the smallest and largest finite hit
 //! distance in the image and `B_MIN = 0.2`:
@@ -17,6 +18,15 @@
 //!
 //! with `b = 1` when `tmax == tmin` (and, for `log`, when `tmin <= 0`). Each channel is
 //! `round(colour * b)`, so the nearest hit shows its full colour and the farthest `B_MIN` of it.
+//!
+//! `shade` multiplies `b` by a headlight, a light at the eye: `l = L_MIN + (1 - L_MIN) |n . d|`,
+//! with `n` the hit's unit normal and `d` its unit ray (`Frame::headlight` gives `|n . d|`, f64
+//! rounded to f32: the light is exact to a part in 1e7, far below the 1/255 of a byte) and
+//! `L_MIN` = [`L_MIN`], so that a surface seen edge-on stays visible against the black
+//! background. Grey rather than each primitive's `random` colour: rendered both ways, the
+//! armadillo's 52,000 triangles tinted read as confetti that hides the shading, grey shows its
+//! shape; on the seed scenes' few spheres and polygons the shading alone tells one surface from
+//! the next. README's mesh pictures use it; `-cm random` keeps a colour per primitive.
 
 use std::collections::HashMap;
 
@@ -35,6 +45,13 @@ pub const PALETTE: [[u8; 3]; 6] = [
 /// Brightness of the farthest hit, as a fraction of its colour, so it stays visible.
 pub const B_MIN: f64 = 0.2;
 
+/// The colour of every primitive in `shade` mode, before the headlight and the dimming.
+pub const SHADE_GREY: [u8; 3] = [235, 235, 235];
+
+/// The headlight of a surface seen edge-on in `shade` mode (`|n . d| = 0`), as a fraction of
+/// face-on.
+pub const L_MIN: f64 = 0.15;
+
 /// How each primitive gets its base colour.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ColorMode {
@@ -42,14 +59,22 @@ pub enum ColorMode {
     Random,
     /// `ordered`: [`PALETTE`] in order of first appearance, scanning from the top-left pixel.
     Ordered,
+    /// `shade`: [`SHADE_GREY`] lit by a headlight at the eye, `|n . d|` (module comment): the
+    /// shape of a surface rather than its primitives. Needs each pixel's `|n . d|`
+    /// ([`Frame::headlight`](crate::Frame::headlight)).
+    Shade,
 }
 
 impl ColorMode {
-    /// The mode named `s` on the command line (`random`, `ordered`), or `None`.
+    /// Every mode, in the order the command line lists them.
+    pub const ALL: [ColorMode; 3] = [ColorMode::Random, ColorMode::Ordered, ColorMode::Shade];
+
+    /// The mode named `s` on the command line (`random`, `ordered`, `shade`), or `None`.
     pub fn parse(s: &str) -> Option<Self> {
         match s {
             "random" => Some(ColorMode::Random),
             "ordered" => Some(ColorMode::Ordered),
+            "shade" => Some(ColorMode::Shade),
             _ => None,
         }
     }
@@ -59,7 +84,14 @@ impl ColorMode {
         match self {
             ColorMode::Random => "random",
             ColorMode::Ordered => "ordered",
+            ColorMode::Shade => "shade",
         }
+    }
+
+    /// Whether the mode lights surfaces by their normals, so that [`shade`] needs each pixel's
+    /// `|n . d|`.
+    pub fn needs_light(&self) -> bool {
+        *self == ColorMode::Shade
     }
 }
 
@@ -92,13 +124,17 @@ impl Variation {
 }
 
 /// Shades a `width`-wide image from its hit buffers; returns `3 * ids.len()` RGB bytes
-/// ([`Frame::rgb`](crate::Frame::rgb) shades a frame).
+/// ([`Frame::rgb`](crate::Frame::rgb) shades a frame). `light` is each pixel's `|n . d|`
+/// ([`Frame::headlight`](crate::Frame::headlight)), which `shade` mode needs and the palette
+/// modes ignore.
 ///
-/// Panics if `ids` and `depth` differ in length or `ids.len()` is not a multiple of `width`
-/// (both are programming errors: the renderer allocates them together).
+/// Panics if `ids` and `depth` (or a `light` given) differ in length, if `ids.len()` is not a
+/// multiple of `width`, or if `mode` is `shade` and `light` is `None` (programming errors: the
+/// renderer allocates the buffers together, and the callers compute the light for the mode).
 pub fn shade(
     ids: &[i32],
     depth: &[f32],
+    light: Option<&[f32]>,
     width: u32,
     mode: ColorMode,
     variation: Variation,
@@ -109,6 +145,14 @@ pub fn shade(
         depth.len(),
         "id and depth buffers differ in length"
     );
+    let light = match (mode, light) {
+        (ColorMode::Shade, None) => panic!("shade mode needs each pixel's |n . d|"),
+        (ColorMode::Shade, Some(l)) => {
+            assert_eq!(l.len(), ids.len(), "id and light buffers differ in length");
+            Some(l)
+        }
+        _ => None,
+    };
     let width = width as usize;
     let mut rgb = vec![0u8; ids.len() * 3];
     if ids.is_empty() {
@@ -124,20 +168,23 @@ pub fn shade(
     // any parallel work; the per-pixel pass below only looks them up.
     let ordered = match mode {
         ColorMode::Ordered => Some(first_appearance(ids)),
-        ColorMode::Random => None,
+        ColorMode::Random | ColorMode::Shade => None,
     };
-    let base = |id: i32| match &ordered {
-        Some(order) => PALETTE[order[&id] as usize % PALETTE.len()],
-        None => random_color(id, seed),
+    let base = |id: i32| match (&ordered, mode) {
+        (Some(order), _) => PALETTE[order[&id] as usize % PALETTE.len()],
+        (None, ColorMode::Shade) => SHADE_GREY,
+        (None, _) => random_color(id, seed),
     };
 
     rgb.par_chunks_mut(width * 3)
         .zip(ids.par_chunks(width))
         .zip(depth.par_chunks(width))
-        .for_each(|((out, ids), depth)| {
+        .enumerate()
+        .for_each(|(row, ((out, ids), depth))| {
+            let lights = light.map(|l| &l[row * width..(row + 1) * width]);
             // Neighbouring pixels mostly share a primitive: look its colour up once per run.
             let mut last: Option<(i32, [u8; 3])> = None;
-            for ((px, &id), &t) in out.chunks_exact_mut(3).zip(ids).zip(depth) {
+            for (x, ((px, &id), &t)) in out.chunks_exact_mut(3).zip(ids).zip(depth).enumerate() {
                 if id < 0 {
                     continue; // background stays black
                 }
@@ -149,13 +196,27 @@ pub fn shade(
                         c
                     }
                 };
-                let b = bright.at(t);
+                let mut b = bright.at(t);
+                if let Some(l) = lights {
+                    b *= headlight(l[x]);
+                }
                 for (o, &c) in px.iter_mut().zip(&colour) {
                     *o = (f64::from(c) * b).round() as u8;
                 }
             }
         });
     rgb
+}
+
+/// The headlight factor `L_MIN + (1 - L_MIN) |n . d|` in `[L_MIN, 1]`, for `cos = |n . d|`
+/// (clamped to `[0, 1]`; a NaN, which no hit gives, lights as edge-on).
+fn headlight(cos: f32) -> f64 {
+    let cos = if cos.is_nan() {
+        0.0
+    } else {
+        f64::from(cos).clamp(0.0, 1.0)
+    };
+    L_MIN + (1.0 - L_MIN) * cos
 }
 
 /// Maps each visible primitive id to its rank of first appearance in reading order.
@@ -277,7 +338,7 @@ mod tests {
 
     #[test]
     fn names_round_trip() {
-        for m in [ColorMode::Random, ColorMode::Ordered] {
+        for m in ColorMode::ALL {
             assert_eq!(ColorMode::parse(m.name()), Some(m));
         }
         for v in [Variation::Linear, Variation::Log] {
@@ -292,7 +353,15 @@ mod tests {
         // Seven primitives in reading order, all at the same depth (full brightness).
         let ids = [0, 1, 2, 3, 4, 5, 6];
         let depth = [1.0f32; 7];
-        let rgb = shade(&ids, &depth, 7, ColorMode::Ordered, Variation::Linear, 0);
+        let rgb = shade(
+            &ids,
+            &depth,
+            None,
+            7,
+            ColorMode::Ordered,
+            Variation::Linear,
+            0,
+        );
         for i in 0..7 {
             assert_eq!(px(&rgb, i), PALETTE[i % 6], "pixel {i}");
         }
@@ -304,7 +373,15 @@ mod tests {
         // 3x2 image: top row 42, -1, 7; bottom row 7, 3, 42. First seen: 42, 7, 3.
         let ids = [42, -1, 7, 7, 3, 42];
         let depth = [2.0, f32::INFINITY, 2.0, 2.0, 2.0, 2.0];
-        let rgb = shade(&ids, &depth, 3, ColorMode::Ordered, Variation::Linear, 0);
+        let rgb = shade(
+            &ids,
+            &depth,
+            None,
+            3,
+            ColorMode::Ordered,
+            Variation::Linear,
+            0,
+        );
         assert_eq!(px(&rgb, 0), PALETTE[0]);
         assert_eq!(px(&rgb, 2), PALETTE[1]);
         assert_eq!(px(&rgb, 3), PALETTE[1]);
@@ -317,7 +394,7 @@ mod tests {
         let ids = [-1, 5, -1, -1];
         let depth = [f32::INFINITY, 3.0, f32::INFINITY, f32::INFINITY];
         for mode in [ColorMode::Random, ColorMode::Ordered] {
-            let rgb = shade(&ids, &depth, 2, mode, Variation::Log, 9);
+            let rgb = shade(&ids, &depth, None, 2, mode, Variation::Log, 9);
             for i in [0, 2, 3] {
                 assert_eq!(px(&rgb, i), [0, 0, 0]);
             }
@@ -326,6 +403,7 @@ mod tests {
         let rgb = shade(
             &[-1; 4],
             &[f32::INFINITY; 4],
+            None,
             2,
             ColorMode::Random,
             Variation::Linear,
@@ -340,16 +418,24 @@ mod tests {
         let ids = [0, 0, 0, -1];
         let depth = [1.0, 4.0, 10.0, f32::INFINITY];
         for variation in [Variation::Linear, Variation::Log] {
-            let rgb = shade(&ids, &depth, 2, ColorMode::Ordered, variation, 0);
+            let rgb = shade(&ids, &depth, None, 2, ColorMode::Ordered, variation, 0);
             assert_eq!(px(&rgb, 0), PALETTE[0]);
             assert_eq!(px(&rgb, 2), scaled(PALETTE[0], B_MIN));
             let mid = px(&rgb, 1);
             assert!(mid[0] < PALETTE[0][0] && mid[0] > scaled(PALETTE[0], B_MIN)[0]);
         }
         // Middle values follow the documented formulas.
-        let lin = shade(&ids, &depth, 2, ColorMode::Ordered, Variation::Linear, 0);
+        let lin = shade(
+            &ids,
+            &depth,
+            None,
+            2,
+            ColorMode::Ordered,
+            Variation::Linear,
+            0,
+        );
         assert_eq!(px(&lin, 1), scaled(PALETTE[0], 1.0 - 0.8 * 3.0 / 9.0));
-        let log = shade(&ids, &depth, 2, ColorMode::Ordered, Variation::Log, 0);
+        let log = shade(&ids, &depth, None, 2, ColorMode::Ordered, Variation::Log, 0);
         assert_eq!(
             px(&log, 1),
             scaled(PALETTE[0], 1.0 - 0.8 * 4f64.ln() / 10f64.ln())
@@ -358,6 +444,7 @@ mod tests {
         let flat = shade(
             &[1, 2],
             &[5.0, 5.0],
+            None,
             2,
             ColorMode::Ordered,
             Variation::Log,
@@ -370,9 +457,33 @@ mod tests {
     fn random_is_deterministic_and_seed_sensitive() {
         let ids: Vec<i32> = (0..64).collect();
         let depth = vec![1.0f32; 64];
-        let a = shade(&ids, &depth, 8, ColorMode::Random, Variation::Linear, 1);
-        let b = shade(&ids, &depth, 8, ColorMode::Random, Variation::Linear, 1);
-        let c = shade(&ids, &depth, 8, ColorMode::Random, Variation::Linear, 2);
+        let a = shade(
+            &ids,
+            &depth,
+            None,
+            8,
+            ColorMode::Random,
+            Variation::Linear,
+            1,
+        );
+        let b = shade(
+            &ids,
+            &depth,
+            None,
+            8,
+            ColorMode::Random,
+            Variation::Linear,
+            1,
+        );
+        let c = shade(
+            &ids,
+            &depth,
+            None,
+            8,
+            ColorMode::Random,
+            Variation::Linear,
+            2,
+        );
         assert_eq!(a, b);
         let differing = (0..64).filter(|&i| px(&a, i) != px(&c, i)).count();
         assert!(
@@ -380,8 +491,92 @@ mod tests {
             "only {differing} of 64 colours changed with the seed"
         );
         // A pixel's colour depends on its id only, not on its neighbours.
-        let one = shade(&[17], &[1.0], 1, ColorMode::Random, Variation::Linear, 1);
+        let one = shade(
+            &[17],
+            &[1.0],
+            None,
+            1,
+            ColorMode::Random,
+            Variation::Linear,
+            1,
+        );
         assert_eq!(px(&one, 0), px(&a, 17));
+    }
+
+    /// `shade`: grey times the headlight `L_MIN + (1 - L_MIN) |n . d|` times the dimming, for
+    /// random lights and depths; background black; the palette modes ignore a light given.
+    #[test]
+    fn shade_is_grey_times_the_headlight_times_the_dimming() {
+        let mut rng = crate::test_rng::Rng(0x5AADE);
+        for case in 0..200 {
+            let n = 1 + rng.below(40) as usize;
+            let ids: Vec<i32> = (0..n).map(|_| rng.below(5) as i32 - 1).collect();
+            let depth: Vec<f32> = ids
+                .iter()
+                .map(|&id| {
+                    if id < 0 {
+                        f32::INFINITY
+                    } else {
+                        1.0 + 99.0 * rng.unit() as f32
+                    }
+                })
+                .collect();
+            let light: Vec<f32> = (0..n).map(|_| rng.unit() as f32).collect();
+            for variation in [Variation::Linear, Variation::Log] {
+                let rgb = shade(
+                    &ids,
+                    &depth,
+                    Some(&light),
+                    n as u32,
+                    ColorMode::Shade,
+                    variation,
+                    7,
+                );
+                let bright = Brightness::new(&ids, &depth, variation);
+                for i in 0..n {
+                    let want = if ids[i] < 0 {
+                        [0; 3]
+                    } else {
+                        let b = bright.at(depth[i]) * (L_MIN + (1.0 - L_MIN) * f64::from(light[i]));
+                        scaled(SHADE_GREY, b)
+                    };
+                    assert_eq!(px(&rgb, i), want, "case {case} pixel {i}");
+                }
+                for mode in [ColorMode::Random, ColorMode::Ordered] {
+                    assert_eq!(
+                        shade(&ids, &depth, Some(&light), n as u32, mode, variation, 7),
+                        shade(&ids, &depth, None, n as u32, mode, variation, 7),
+                        "case {case}: {mode:?} ignores the light"
+                    );
+                }
+            }
+        }
+        // face-on at the nearest distance: full grey; edge-on: L_MIN of it
+        let rgb = shade(
+            &[0, 0],
+            &[2.0, 2.0],
+            Some(&[1.0, 0.0]),
+            2,
+            ColorMode::Shade,
+            Variation::Linear,
+            0,
+        );
+        assert_eq!(px(&rgb, 0), SHADE_GREY);
+        assert_eq!(px(&rgb, 1), scaled(SHADE_GREY, L_MIN));
+    }
+
+    #[test]
+    #[should_panic(expected = "shade mode needs each pixel's |n . d|")]
+    fn shade_without_the_light_is_a_programming_error() {
+        shade(
+            &[0],
+            &[1.0],
+            None,
+            1,
+            ColorMode::Shade,
+            Variation::Linear,
+            0,
+        );
     }
 
     #[test]

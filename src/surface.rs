@@ -1,12 +1,15 @@
 //! What a frame says about the surfaces it hit, beyond ids and distances: depth along the
 //! optical axis ([`Frame::z_depth`]) and each hit's surface normal ([`Frame::normals`]), as
-//! dataset users ask for them. Both are computed per pixel from the frame, the camera and the
+//! dataset users ask for them (the command line's `--zdepth` and `--normals`, Python's
+//! `zdepth=True` and `normals=True`), and the headlight `|n . d|` that `-cm shade` lights a hit
+//! by ([`Frame::headlight`]). All are computed per pixel from the frame, the camera and the
 //! scene's primitives, after the render; the render itself is unchanged.
 //!
 //! Formulas (f64, rounded to f32 once):
 //! - z-depth: `t (d . f)`, with `t` the pixel's distance along its unit ray `d` (the camera's
 //!   f64 ray, `RayTables::dir_x1`) and `f` the unit forward axis. Relative error a few units
-//!   of f32 rounding (`t` is the f32 depth): `t` itself is the only rounded input.
+//!   of f32 rounding (`t` is the f32 depth): `t` itself is the only rounded input, so against
+//!   the exact hit the error is the depth's (within 1e-5 relative of the oracle's).
 //! - Normals, world coordinates, unit length, turned to face the eye (`n . (eye - P) > 0` for
 //!   a polygon, so both sides of a sheet read as seen):
 //!   - a triangle: `(B - A) x (C - A)`, a quad: `(C - A) x (D - B)` (its diagonals), the
@@ -24,7 +27,8 @@
 //! the render reports, so where two primitives tie the id's primitive gives it.
 //! Tested in `tests/surface.rs`: a picked scene (a floor, a wall wound backwards, a sphere),
 //! and the exact hit along the same f64 ray over random scenes, cameras, scales and eyes
-//! inside spheres.
+//! inside spheres; `tests/cli/surface_outputs.rs`: the command line's files against each
+//! primitive's f64 normal and exact z-depth, with every `--accel`.
 
 use crate::Frame;
 use crate::camera::Camera;
@@ -53,34 +57,91 @@ impl Frame<f32> {
     /// `[x, y, z]` rows, row-major like [`Frame::ids`]; `[0, 0, 0]` for background. `scene` and
     /// `camera` are those the frame was rendered from (module comment: formulas, precision).
     pub fn normals(&self, scene: &Scene, camera: &Camera) -> Vec<[f32; 3]> {
-        let tables = camera.tables::<f64>(1, 1);
-        let w = self.width as usize;
-        let eye = camera.eye;
-        let normal = |i: usize| -> [f32; 3] {
-            let id = self.ids[i];
-            if id < 0 || id as usize >= scene.shapes.len() {
-                return [0.0; 3];
-            }
-            let n = match scene.shapes.get(id as usize) {
-                Shape::Triangle([a, b, c]) => facing((b - a).cross(c - a), a - eye),
-                Shape::Quad([a, b, c, d]) => facing((c - a).cross(d - b), a - eye),
-                Shape::Sphere { center, radius } => {
-                    let d = DVec3::from_array(tables.dir_x1(i % w, i / w));
-                    let p = eye + d * f64::from(self.depth[i]);
-                    let out = (p - center).normalize_or_zero();
-                    // seen from inside, the eye looks at the inner side
-                    if (eye - center).length() < radius {
-                        -out
-                    } else {
-                        out
-                    }
+        Surfaces::new(self, scene, camera).map([0.0; 3], |n, _| n.as_vec3().to_array())
+    }
+
+    /// The headlight term of each pixel, `|n . d|` in `[0, 1]`: the cosine between its hit's
+    /// f64 normal (as [`Frame::normals`] gives it, before rounding to f32) and its unit f64
+    /// ray, 1 face-on and 0 at grazing incidence; 0 for background. What `-cm shade` lights a
+    /// surface by ([`crate::shade`]); rounded to f32 once.
+    pub fn headlight(&self, scene: &Scene, camera: &Camera) -> Vec<f32> {
+        Surfaces::new(self, scene, camera).map(0.0, |n, d| n.dot(d).abs().min(1.0) as f32)
+    }
+}
+
+/// What the per-pixel surface functions share: the frame, its scene, its camera's f64 rays.
+struct Surfaces<'a> {
+    frame: &'a Frame<f32>,
+    scene: &'a Scene,
+    tables: crate::camera::RayTables<f64>,
+    eye: DVec3,
+}
+
+impl<'a> Surfaces<'a> {
+    fn new(frame: &'a Frame<f32>, scene: &'a Scene, camera: &Camera) -> Self {
+        Surfaces {
+            frame,
+            scene,
+            tables: camera.tables::<f64>(1, 1),
+            eye: camera.eye,
+        }
+    }
+
+    /// `f(n, d)` for every pixel that hit, `background` for the others, row-major: `n` the
+    /// hit's unit f64 normal facing the eye (the one formula of the module comment), `d` its
+    /// unit f64 ray. Rows run in parallel; along a row, a polygon's normal, which depends on its
+    /// id alone, is computed once per run of pixels that show it.
+    fn map<T: Copy + Send + Sync>(
+        &self,
+        background: T,
+        f: impl Fn(DVec3, DVec3) -> T + Sync + Send,
+    ) -> Vec<T> {
+        let (ids, w) = (&self.frame.ids, self.frame.width as usize);
+        let mut out = vec![background; ids.len()];
+        if ids.is_empty() {
+            return out;
+        }
+        out.par_chunks_mut(w).enumerate().for_each(|(y, row)| {
+            let mut last: Option<(i32, DVec3)> = None;
+            for (x, o) in row.iter_mut().enumerate() {
+                let id = ids[y * w + x];
+                if id < 0 || id as usize >= self.scene.shapes.len() {
+                    continue;
                 }
-            };
-            n.as_vec3().to_array()
-        };
-        let mut out = Vec::with_capacity(self.ids.len());
-        out.par_extend((0..self.ids.len()).into_par_iter().map(normal));
+                let d = DVec3::from_array(self.tables.dir_x1(x, y));
+                let n = match last {
+                    Some((lid, n)) if lid == id => n,
+                    _ => {
+                        let (n, polygon) = self.normal(id, d, self.frame.depth[y * w + x]);
+                        last = polygon.then_some((id, n));
+                        n
+                    }
+                };
+                *o = f(n, d);
+            }
+        });
         out
+    }
+
+    /// The unit f64 normal facing the eye of primitive `id`, hit at distance `t` along the unit
+    /// ray `d`, and whether it is a polygon's (the same for every ray that hits it).
+    fn normal(&self, id: i32, d: DVec3, t: f32) -> (DVec3, bool) {
+        let eye = self.eye;
+        match self.scene.shapes.get(id as usize) {
+            Shape::Triangle([a, b, c]) => (facing((b - a).cross(c - a), a - eye), true),
+            Shape::Quad([a, b, c, dd]) => (facing((c - a).cross(dd - b), a - eye), true),
+            Shape::Sphere { center, radius } => {
+                let p = eye + d * f64::from(t);
+                let out = (p - center).normalize_or_zero();
+                // seen from inside, the eye looks at the inner side
+                let n = if (eye - center).length() < radius {
+                    -out
+                } else {
+                    out
+                };
+                (n, false)
+            }
+        }
     }
 }
 

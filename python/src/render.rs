@@ -208,11 +208,15 @@ pub(crate) fn shade<'py>(
     variation: &str,
     #[pyo3(from_py_with = args::seed)] seed: u64,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let mode = ColorMode::parse(color_mode).ok_or_else(|| {
-        value_error(format!(
-            "color_mode={color_mode:?}: must be \"random\" or \"ordered\""
-        ))
-    })?;
+    let mode = ColorMode::parse(color_mode)
+        .filter(|m| !m.needs_light())
+        .ok_or_else(|| {
+            value_error(format!(
+                "color_mode={color_mode:?}: must be \"random\" or \"ordered\" (the command \
+                 line's -cm shade lights each hit by its surface normal, which ids and depth \
+                 alone do not give)"
+            ))
+        })?;
     let var = Variation::parse(variation).ok_or_else(|| {
         value_error(format!(
             "variation={variation:?}: must be \"linear\" or \"log\""
@@ -240,7 +244,7 @@ pub(crate) fn shade<'py>(
     let mut out = Vec::with_capacity(ids.len() * 3);
     if hw > 0 {
         for (i, d) in ids.chunks(hw).zip(depth.chunks(hw)) {
-            out.extend(lanecast::shade(i, d, w as u32, mode, var, seed));
+            out.extend(lanecast::shade(i, d, None, w as u32, mode, var, seed));
         }
     }
     let mut full = shape.clone();

@@ -10,6 +10,7 @@ Examples:
   lanecast -i scene1.sc -o scene1.png -size 800x600 -fov 80
   lanecast -i scene1.sc -cm ordered -cv log -time
   lanecast -i scene1.sc --kernel scalar --threads 1 --ids ids.npy --depth depth.npy
+  lanecast -i scenes/bunny.sc -cm shade --zdepth z.npy --normals n.npy
   lanecast compare -i scene1.sc -size 1920x1080 -o diff.png
 
 Exit codes: 0 success, 2 bad usage or bad input (message names the file and line, or the
@@ -127,10 +128,11 @@ pub(super) struct RenderArgs {
     /// extension decides, and a --format that disagrees is refused.
     #[arg(long, value_name = "FORMAT", value_parser = ["png", "bmp"])]
     pub(super) format: Option<String>,
-    /// Colour per primitive: random (seeded) or ordered (palette by first appearance)
+    /// Colour: random (a seeded colour per primitive), ordered (palette by first appearance)
+    /// or shade (grey lit by a headlight at the eye, |n . d|: the shape of a scan)
     /// (single-dash form: -cm).
     #[arg(long = "color-mode", value_name = "MODE", default_value = "random",
-          value_parser = ["random", "ordered"])]
+          value_parser = ["random", "ordered", "shade"])]
     pub(super) color_mode: String,
     /// Brightness against hit distance: linear or log (single-dash form: -cv).
     #[arg(long = "color-variation", value_name = "VARIATION", default_value = "linear",
@@ -143,7 +145,7 @@ pub(super) struct RenderArgs {
     /// oracle) or scalar-f32.
     #[arg(long, value_enum, default_value = "simd")]
     pub(super) kernel: KernelArg,
-    /// Seed of the random colour mode (refused with -cm ordered, which has no seed).
+    /// Seed of the random colour mode (refused with -cm ordered and -cm shade, which have none).
     #[arg(long, value_name = "N", default_value_t = 0)]
     pub(super) seed: u64,
     /// Also write per-pixel primitive ids (int32, -1 = background) as a (H, W) .npy file.
@@ -152,6 +154,14 @@ pub(super) struct RenderArgs {
     /// Also write per-pixel hit distances (float32, +inf = background) as a (H, W) .npy file.
     #[arg(long, value_name = "FILE.npy")]
     pub(super) depth: Option<PathBuf>,
+    /// Also write per-pixel distances along the camera's forward axis (float32, +inf =
+    /// background; depth times the ray's cosine with the axis) as a (H, W) .npy file.
+    #[arg(long, value_name = "FILE.npy")]
+    pub(super) zdepth: Option<PathBuf>,
+    /// Also write per-pixel unit surface normals (float32, world space, facing the camera;
+    /// 0, 0, 0 = background) as a (H, W, 3) .npy file.
+    #[arg(long, value_name = "FILE.npy")]
+    pub(super) normals: Option<PathBuf>,
     /// Render K times and report the best and median render time (-time, --stats).
     #[arg(long, value_name = "K", default_value_t = 1,
           value_parser = clap::value_parser!(u32).range(1..=10_000))]

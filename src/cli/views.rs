@@ -79,18 +79,25 @@ pub fn check(s: &RenderSettings, typed: &Typed) -> Result<()> {
             }
         }
     }
-    if s.skip_existing && s.stdout_format.is_some() && s.ids.is_none() && s.depth.is_none() {
+    let files = [
+        ("--ids", &s.ids),
+        ("--depth", &s.depth),
+        ("--zdepth", &s.zdepth),
+        ("--normals", &s.normals),
+    ];
+    if s.skip_existing && s.stdout_format.is_some() && files.iter().all(|f| f.1.is_none()) {
         // no view writes a file whose presence would tell that it is done
         return Err(Error::usage(
-            "--skip-existing: with -o - and no --ids or --depth, no view writes a file to \
-             find, so every view would stream again; leave out --skip-existing, or write the \
-             views to files (-o PATTERN, --ids, --depth)",
+            "--skip-existing: with -o - and no --ids, --depth, --zdepth or --normals, no view \
+             writes a file to find, so every view would stream again; leave out \
+             --skip-existing, or write the views to files (-o PATTERN, --ids, --depth, \
+             --zdepth, --normals)",
         ));
     }
     if s.stdout_format.is_none() {
         Pattern::parse("-o", &s.output)?;
     }
-    for (name, path) in [("--ids", &s.ids), ("--depth", &s.depth)] {
+    for (name, path) in files {
         if let Some(p) = path {
             Pattern::parse(name, p)?;
         }

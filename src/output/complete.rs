@@ -13,8 +13,9 @@ use std::path::Path;
 pub(crate) enum Expected {
     /// An image, PNG or BMP by the extension.
     Image,
-    /// A `.npy` array of `<i4` (ids) or `<f4` (depths), shape (height, width).
-    Npy(&'static str),
+    /// A `.npy` array of `<i4` (ids) or `<f4` (depths, z-depths, normals) with this many values
+    /// a pixel: 1, shape (height, width), or 3, shape (height, width, 3).
+    Npy(&'static str, usize),
 }
 
 /// Whether `path` is a whole file of `what` for a `width` x `height` view. Any error reading
@@ -31,7 +32,9 @@ pub(crate) fn is_complete(path: &Path, what: Expected, width: u32, height: u32) 
     }
     let len = meta.len();
     match what {
-        Expected::Npy(descr) => npy_complete(&mut file, len, descr, width, height),
+        Expected::Npy(descr, per_pixel) => {
+            npy_complete(&mut file, len, (descr, per_pixel), width, height)
+        }
         Expected::Image => match super::image_format(path) {
             Ok(ImageFormat::Png) => png_complete(&mut file, len, width, height),
             Ok(ImageFormat::Bmp) => bmp_complete(&mut file, len, width, height),
@@ -41,10 +44,19 @@ pub(crate) fn is_complete(path: &Path, what: Expected, width: u32, height: u32) 
     .unwrap_or(false)
 }
 
-/// The `.npy` header lanecast writes for this shape, then exactly 4 bytes per pixel.
-fn npy_complete(f: &mut File, len: u64, descr: &str, w: u32, h: u32) -> std::io::Result<bool> {
-    let header = super::npy::npy_header(descr, w as usize, h as usize);
-    if len != header.len() as u64 + 4 * w as u64 * h as u64 {
+/// The `.npy` header lanecast writes for this shape, then exactly 4 bytes per value.
+fn npy_complete(
+    f: &mut File,
+    len: u64,
+    (descr, per_pixel): (&str, usize),
+    w: u32,
+    h: u32,
+) -> std::io::Result<bool> {
+    let header = match per_pixel {
+        1 => super::npy::npy_header(descr, w as usize, h as usize),
+        _ => super::npy::npy3_header(descr, w as usize, h as usize),
+    };
+    if len != header.len() as u64 + 4 * per_pixel as u64 * w as u64 * h as u64 {
         return Ok(false);
     }
     let mut got = vec![0; header.len()];
@@ -124,8 +136,14 @@ mod tests {
         }
         cases.push((
             "a.npy",
-            Expected::Npy("<i4"),
+            Expected::Npy("<i4", 1),
             crate::output::npy_i32(w, h, &ids),
+        ));
+        let normals: Vec<[f32; 3]> = (0..w * h).map(|i| [i as f32, 0.5, -1.0]).collect();
+        cases.push((
+            "n.npy",
+            Expected::Npy("<f4", 3),
+            crate::output::npy_f32x3(w, h, &normals),
         ));
         for (name, what, bytes) in cases {
             let path = dir.0.join(name);
@@ -139,10 +157,16 @@ mod tests {
                 !is_complete(&path, what, w, h + 1),
                 "{name} at another height"
             );
-            if what != Expected::Image {
+            // another dtype, or one value a pixel where three are due (and back)
+            if let Expected::Npy(descr, per_pixel) = what {
+                let other = if descr == "<i4" { "<f4" } else { "<i4" };
                 assert!(
-                    !is_complete(&path, Expected::Npy("<f4"), w, h),
+                    !is_complete(&path, Expected::Npy(other, per_pixel), w, h),
                     "{name}: dtype"
+                );
+                assert!(
+                    !is_complete(&path, Expected::Npy(descr, 4 - per_pixel), w, h),
+                    "{name}: values a pixel"
                 );
             }
             for cut in 0..bytes.len() {

@@ -11,8 +11,17 @@ use crate::{Error, Result};
 /// Magic, version, u16 length and dict together are padded with spaces to a multiple of 64
 /// bytes and end in `\n`, as NumPy itself writes them.
 pub(super) fn npy_header(descr: &str, width: usize, height: usize) -> Vec<u8> {
-    let dict =
-        format!("{{'descr': '{descr}', 'fortran_order': False, 'shape': ({height}, {width}), }}");
+    npy_header_shape(descr, &format!("({height}, {width})"))
+}
+
+/// The `.npy` header for a C-order `(height, width, 3)` array: three values a pixel (normals).
+pub(super) fn npy3_header(descr: &str, width: usize, height: usize) -> Vec<u8> {
+    npy_header_shape(descr, &format!("({height}, {width}, 3)"))
+}
+
+/// The `.npy` header for an array of `shape`, as Python writes the tuple.
+fn npy_header_shape(descr: &str, shape: &str) -> Vec<u8> {
+    let dict = format!("{{'descr': '{descr}', 'fortran_order': False, 'shape': {shape}, }}");
     let unpadded = 10 + dict.len() + 1; // magic (6) + version (2) + length (2) + dict + '\n'
     let total = unpadded.div_ceil(64) * 64;
     let header_len = (total - 10) as u16; // the dict is < 100 bytes: always fits
@@ -92,6 +101,39 @@ pub(super) fn npy_fill<'a, T: Copy>(
     Ok(move |w: &mut BufWriter<File>| {
         w.write_all(&npy_header(descr, width, height))?;
         write_le(w, data, le)
+    })
+}
+
+/// A complete `.npy` file for a `height` x `width` x 3 array of f32 (three values a pixel,
+/// row-major: the `--normals` file). Panics if `data.len() != width * height`.
+pub fn npy_f32x3(width: u32, height: u32, data: &[[f32; 3]]) -> Vec<u8> {
+    assert_eq!(
+        data.len(),
+        width as usize * height as usize,
+        "npy data does not match its shape"
+    );
+    let mut out = npy3_header("<f4", width as usize, height as usize);
+    write_le(&mut out, data.as_flattened(), f32::to_le_bytes)
+        .expect("writing to a Vec cannot fail");
+    out
+}
+
+/// The writer of a `(height, width, 3)` f32 `.npy` file, as [`npy_fill`].
+pub(super) fn npy3_fill<'a>(
+    path: &Path,
+    (width, height): (usize, usize),
+    data: &'a [[f32; 3]],
+) -> Result<impl FnOnce(&mut BufWriter<File>) -> io::Result<()> + 'a> {
+    if width.checked_mul(height) != Some(data.len()) {
+        return Err(Error::Failed(format!(
+            "{}: internal error: {} normals for a {width}x{height} array",
+            path.display(),
+            data.len()
+        )));
+    }
+    Ok(move |w: &mut BufWriter<File>| {
+        w.write_all(&npy3_header("<f4", width, height))?;
+        write_le(w, data.as_flattened(), f32::to_le_bytes)
     })
 }
 

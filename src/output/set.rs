@@ -40,8 +40,8 @@ use std::path::{Path, PathBuf};
 
 use super::lock::{FolderLock, lock_wait};
 use super::{
-    TMP_COUNTER, create_temp, fill_file, image_fill, npy_fill, parent_dir, pending, same_file,
-    stale, sync_parent, unregister,
+    TMP_COUNTER, create_temp, fill_file, image_fill, npy_fill, npy3_fill, parent_dir, pending,
+    same_file, stale, sync_parent, unregister,
 };
 use crate::{Error, Result};
 use std::time::Duration;
@@ -112,6 +112,8 @@ fn action(flag: &str) -> &'static str {
         "--output" => "write the --output image",
         "--ids" => "write the --ids file",
         "--depth" => "write the --depth file",
+        "--zdepth" => "write the --zdepth file",
+        "--normals" => "write the --normals file",
         "--stats" => "write the --stats file",
         _ => "write output",
     }
@@ -320,6 +322,19 @@ impl OutputSet {
             flag,
             npy_fill(&path, "<f4", (w, h), data, f32::to_le_bytes)?,
         )
+    }
+
+    /// Writes a `height` x `width` x 3 f32 array (three values a pixel) as the `.npy` file of
+    /// `flag`.
+    pub fn write_npy_f32x3(
+        &mut self,
+        flag: &str,
+        w: usize,
+        h: usize,
+        data: &[[f32; 3]],
+    ) -> Result<()> {
+        let path = self.path_of(flag)?;
+        self.write_with(flag, npy3_fill(&path, (w, h), data)?)
     }
 
     /// Writes `bytes` as the output of `flag`.

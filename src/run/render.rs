@@ -1,13 +1,15 @@
 //! The render command, phase by phase: check the outputs, parse, setup, render, shade, write.
 
 use super::load_view;
+use crate::camera::Camera;
 use crate::cli::{KernelArg, RenderSettings};
 use crate::error::{Error, Result};
+use crate::frame::Frame;
 use crate::limits::{BYTES_PER_PIXEL, MAX_PIXELS};
 use crate::output::{self, OutputKind, OutputSet};
 use crate::progress;
 use crate::render::{Kernel, Options, Renderer};
-use crate::shade::shade;
+use crate::scene::Scene;
 use crate::stats::{Stats, scene_name, secs};
 use std::path::Path;
 use std::time::Instant;
@@ -30,6 +32,16 @@ fn outputs(s: &RenderSettings) -> Vec<(&'static str, &Path, OutputKind)> {
     }
     outs.extend(s.ids.as_deref().map(|p| ("--ids", p, OutputKind::Npy)));
     outs.extend(s.depth.as_deref().map(|p| ("--depth", p, OutputKind::Npy)));
+    outs.extend(
+        s.zdepth
+            .as_deref()
+            .map(|p| ("--zdepth", p, OutputKind::Npy)),
+    );
+    outs.extend(
+        s.normals
+            .as_deref()
+            .map(|p| ("--normals", p, OutputKind::Npy)),
+    );
     outs.extend(s.stats.as_deref().map(|p| ("--stats", p, OutputKind::Json)));
     outs
 }
@@ -40,6 +52,8 @@ pub(super) fn stats_key(flag: &str) -> &'static str {
         "--output" => "image",
         "--ids" => "ids",
         "--depth" => "depth",
+        "--zdepth" => "zdepth",
+        "--normals" => "normals",
         _ => "stats",
     }
 }
@@ -74,13 +88,25 @@ pub(super) fn run_stats(s: &RenderSettings, outputs: Vec<(&'static str, String)>
     }
 }
 
+/// The frame shaded as `s` asks (`-cm`, `-cv`, `--seed`: [`Frame::rgb`], which lights each
+/// hit by its normal in `shade` mode), from the scene and camera it was rendered with.
+pub(super) fn shade_frame(
+    s: &RenderSettings,
+    frame: &Frame<f32>,
+    scene: &Scene,
+    camera: &Camera,
+) -> Vec<u8> {
+    frame.rgb(scene, camera, s.color_mode, s.variation, s.seed)
+}
+
 /// Writes a frame's outputs that `s` asks for into the temporary files of `set`: the image
-/// (`rgb`, unless it goes to standard output), ids and depths. The targets change only when
-/// the set commits.
+/// (`rgb`, unless it goes to standard output), ids, depths, z-depths and normals (the last
+/// two from the scene and camera the frame was rendered with: `Frame::z_depth`,
+/// `Frame::normals`). The targets change only when the set commits.
 pub(super) fn write_frame(
     set: &mut OutputSet,
     s: &RenderSettings,
-    frame: &crate::Frame<f32>,
+    (frame, scene, camera): (&Frame<f32>, &Scene, &Camera),
     rgb: &[u8],
 ) -> Result<()> {
     let (w, h) = (s.view.width as usize, s.view.height as usize);
@@ -92,6 +118,12 @@ pub(super) fn write_frame(
     }
     if s.depth.is_some() {
         set.write_npy_f32("--depth", w, h, &frame.depth)?;
+    }
+    if s.zdepth.is_some() {
+        set.write_npy_f32("--zdepth", w, h, &frame.z_depth(camera))?;
+    }
+    if s.normals.is_some() {
+        set.write_npy_f32x3("--normals", w, h, &frame.normals(scene, camera))?;
     }
     Ok(())
 }
@@ -180,18 +212,11 @@ pub(crate) fn render_command(s: &RenderSettings) -> Result<()> {
     stats.phases.push(("render", stats.render_best()));
     clock = Instant::now();
 
-    let rgb = shade(
-        &frame.ids,
-        &frame.depth,
-        s.view.width,
-        s.color_mode,
-        s.variation,
-        s.seed,
-    );
+    let rgb = shade_frame(s, &frame, &scene, &camera);
     lap("shade", &mut stats, &mut clock);
 
     // Into the temporary files; the targets change only in `commit`, all together.
-    write_frame(&mut set, s, &frame, &rgb)?;
+    write_frame(&mut set, s, (&frame, &scene, &camera), &rgb)?;
     lap("write", &mut stats, &mut clock);
 
     if s.stats.is_some() {

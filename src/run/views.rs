@@ -8,7 +8,9 @@
 //! range rule (`scene::range::f32_range`, relative to that eye). A bad view stops the run
 //! with nothing written.
 
-use super::render::{check_memory, encode_to_stdout, run_stats, stats_key, write_frame};
+use super::render::{
+    check_memory, encode_to_stdout, run_stats, shade_frame, stats_key, write_frame,
+};
 use crate::cli::{RenderSettings, ViewSource};
 use crate::error::{Error, Result};
 use crate::output::{self, Expected, OutputKind, OutputSet, Pattern};
@@ -16,7 +18,6 @@ use crate::progress;
 use crate::render::{Options, Views};
 use crate::scene::views::{ViewLine, load_views, orbit};
 use crate::scene::{CameraSpec, Scene, load_scene_meshes};
-use crate::shade::shade;
 use crate::stats::{Stats, ViewTime, ViewTimes, secs};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -30,7 +31,8 @@ struct Numbered {
     kind: OutputKind,
 }
 
-/// The numbered outputs of `s`: the image (unless it goes to standard output), ids, depth.
+/// The numbered outputs of `s`: the image (unless it goes to standard output), ids, depth,
+/// z-depth, normals.
 fn numbered(s: &RenderSettings) -> Result<Vec<Numbered>> {
     let mut outs = Vec::new();
     let mut add = |flag, path: &Path, kind| -> Result<()> {
@@ -50,6 +52,12 @@ fn numbered(s: &RenderSettings) -> Result<Vec<Numbered>> {
     }
     if let Some(p) = &s.depth {
         add("--depth", p, OutputKind::Npy)?;
+    }
+    if let Some(p) = &s.zdepth {
+        add("--zdepth", p, OutputKind::Npy)?;
+    }
+    if let Some(p) = &s.normals {
+        add("--normals", p, OutputKind::Npy)?;
     }
     Ok(outs)
 }
@@ -252,15 +260,8 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
             };
             stats.renders.push(time.render_s);
             let clock = Instant::now();
-            let rgb = shade(
-                &frame.ids,
-                &frame.depth,
-                s.view.width,
-                s.color_mode,
-                s.variation,
-                s.seed,
-            );
-            write_frame(&mut set, s, &frame, &rgb)?;
+            let rgb = shade_frame(s, &frame, &scene, camera);
+            write_frame(&mut set, s, (&frame, &scene, camera), &rgb)?;
             set.commit()?;
             views.recycle(frame);
             let sent = match s.stdout_format {
@@ -295,8 +296,9 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
 fn complete(flags: &[(&'static str, OutputKind)], paths: &[PathBuf], s: &RenderSettings) -> bool {
     flags.iter().zip(paths).all(|(&(flag, kind), path)| {
         let what = match (kind, flag) {
-            (OutputKind::Npy, "--ids") => Expected::Npy("<i4"),
-            (OutputKind::Npy, _) => Expected::Npy("<f4"),
+            (OutputKind::Npy, "--ids") => Expected::Npy("<i4", 1),
+            (OutputKind::Npy, "--normals") => Expected::Npy("<f4", 3),
+            (OutputKind::Npy, _) => Expected::Npy("<f4", 1),
             _ => Expected::Image,
         };
         output::is_complete(path, what, s.view.width, s.view.height)

@@ -264,7 +264,7 @@ fn threads_a_one_thread_method_cannot_use_are_refused() {
 }
 
 #[test]
-fn a_seed_with_the_ordered_palette_is_refused() {
+fn a_seed_with_the_ordered_palette_or_shade_is_refused() {
     let dir = with_scene("flags-seed");
     refused(
         &dir,
@@ -282,11 +282,18 @@ fn a_seed_with_the_ordered_palette_is_refused() {
         &render_args(&["--color-mode=ordered", "--seed=7"]),
         &["--seed 7", "--color-mode ordered"],
     );
+    // shade's grey has no seed either
+    refused(
+        &dir,
+        &render_args(&["-cm", "shade", "--seed", "0"]),
+        &["--seed 0", "-cm shade", "grey", "random"],
+    );
     // the seed applies to the random colours, typed or by default
     for extra in [
         &["--seed", "3"][..],
         &["-cm", "random", "--seed", "3"],
         &["-cm", "ordered"],
+        &["-cm", "shade", "-cv", "log"],
     ] {
         accepted(&dir, &render_args(extra));
     }

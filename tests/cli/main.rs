@@ -55,3 +55,4 @@ mod rejected;
 mod stale;
 mod stats;
 mod stdin;
+mod surface_outputs;

@@ -83,7 +83,7 @@ fn bad_views_and_patterns_are_refused_before_anything_is_written() {
         // with every image streamed and no file per view, nothing tells a view is done
         (
             &["--orbit", "2", "-o", "-", "--skip-existing"],
-            "--skip-existing: with -o - and no --ids or --depth",
+            "--skip-existing: with -o - and no --ids, --depth, --zdepth or --normals",
         ),
         (
             &[
@@ -95,7 +95,7 @@ fn bad_views_and_patterns_are_refused_before_anything_is_written() {
                 "s.json",
                 "--skip-existing",
             ],
-            "--skip-existing: with -o - and no --ids or --depth",
+            "--skip-existing: with -o - and no --ids, --depth, --zdepth or --normals",
         ),
         (
             &["--orbit", "2", "-o", "f%d.png", "-fov", "180"],

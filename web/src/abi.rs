@@ -176,7 +176,7 @@ pub extern "C" fn lc_depth() -> *const f32 {
     })
 }
 
-/// The last frame shaded as RGBA (`width * height * 4` bytes): `mode` 0 random, 1 ordered;
+/// The last frame shaded as RGBA (`width * height * 4` bytes): `mode` 0 random, 1 ordered, 2 shade;
 /// `variation` 0 linear, 1 log; `hover` and `pinned` ids highlighted (-1: none).
 #[unsafe(no_mangle)]
 pub extern "C" fn lc_shade(
@@ -186,10 +186,10 @@ pub extern "C" fn lc_shade(
     hover: i32,
     pinned: i32,
 ) -> *const u8 {
-    let mode = if mode == 1 {
-        ColorMode::Ordered
-    } else {
-        ColorMode::Random
+    let mode = match mode {
+        1 => ColorMode::Ordered,
+        2 => ColorMode::Shade,
+        _ => ColorMode::Random,
     };
     let variation = if variation == 1 {
         Variation::Log

@@ -163,11 +163,11 @@ impl State {
         hover: i32,
         pinned: i32,
     ) -> &[u8] {
-        let Some((frame, _)) = &self.frame else {
+        let (Some((frame, camera)), Some(loaded)) = (&self.frame, &self.loaded) else {
             self.rgba.clear();
             return &self.rgba;
         };
-        let rgb = frame.rgb(mode, variation, seed);
+        let rgb = frame.rgb(loaded.scene(), camera, mode, variation, seed);
         let (w, h) = (frame.width as usize, frame.height as usize);
         self.rgba.resize(w * h * 4, 255);
         for (o, i) in self.rgba.chunks_exact_mut(4).zip(rgb.chunks_exact(3)) {

@@ -373,6 +373,7 @@ test('the colour controls shade as -cm, -cv and --seed do', async () => {
   await page.waitForFunction(() => window.lanecastApp.sceneName === 'scene4.sc' && !window.lanecastApp.dirty);
   for (const [mode, variation, seed, flags] of [
     ['ordered', 'log', '0', ['-cm', 'ordered', '-cv', 'log']],
+    ['shade', 'linear', '0', ['-cm', 'shade']],
     ['random', 'log', '7', ['-cv', 'log', '--seed', '7']],
     ['random', 'linear', '0', []],
   ]) {

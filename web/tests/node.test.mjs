@@ -207,6 +207,31 @@ test('shade follows -cm, -cv and --seed and highlights the hovered primitive', (
   assert.ok(fs.statSync(png).size > 0);
 });
 
+test('shade mode is the command line\'s -cm shade, byte for byte', () => {
+  const [w, h] = [96, 64];
+  for (const scene of ['scenes/scene4.sc', 'scenes/teapot.sc']) {
+    const f = files(scene);
+    lc.load(scene, f.bytes, f.meshes);
+    const ids = lc.render(null, w, h).ids.slice();
+    const rgba = lc.shade({ mode: 'shade', variation: 'log' }).slice();
+    const bmp = path.join(tmp, 'shade.bmp');
+    execFileSync(bin, ['-i', scene, '-size', `${w}x${h}`, '-o', bmp, '-cm', 'shade', '-cv', 'log'], { cwd: root });
+    // 24-bit BMP: rows bottom-up, BGR, each padded to 4 bytes
+    const b = fs.readFileSync(bmp);
+    const [at, row] = [b.readUInt32LE(10), Math.ceil((3 * w) / 4) * 4];
+    let hits = 0;
+    for (let k = 0; k < w * h; k++) {
+      const [x, y] = [k % w, Math.floor(k / w)];
+      const o = at + (h - 1 - y) * row + 3 * x;
+      assert.deepEqual([rgba[4 * k], rgba[4 * k + 1], rgba[4 * k + 2]], [b[o + 2], b[o + 1], b[o]], `${scene} pixel ${k}`);
+      assert.ok(rgba[4 * k] === rgba[4 * k + 1] && rgba[4 * k + 1] === rgba[4 * k + 2], `${scene} pixel ${k}: grey`);
+      if (ids[k] < 0) assert.equal(rgba[4 * k], 0, `${scene} pixel ${k}: background`);
+      else hits++;
+    }
+    assert.ok(hits > 100, `${scene}: ${hits} hits`);
+  }
+});
+
 test('bad files: the command line\'s FILE:LINE:COL message, and the previous scene stays', () => {
   const good = files('scenes/scene3.sc');
   lc.load('scenes/scene3.sc', good.bytes);

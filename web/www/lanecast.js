@@ -31,7 +31,7 @@ export async function init(source) {
   return new Lanecast(instance.exports);
 }
 
-const MODES = { random: 0, ordered: 1 };
+const MODES = { random: 0, ordered: 1, shade: 2 };
 const VARIATIONS = { linear: 0, log: 1 };
 
 export class Lanecast {
@@ -126,7 +126,7 @@ export class Lanecast {
   }
 
   /**
-   * The last frame shaded as RGBA: {mode: 'random'|'ordered', variation: 'linear'|'log',
+   * The last frame shaded as RGBA: {mode: 'random'|'ordered'|'shade', variation: 'linear'|'log',
    * seed, hover, pinned} as the command line's -cm, -cv and --seed; ids `hover` and `pinned`
    * highlighted.
    */
