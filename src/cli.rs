@@ -1,6 +1,6 @@
 //! The command line: raw arguments to validated settings in one step.
 //!
-//! The original assignment's single-dash long options (`-size`, `-fov`, `-cm`, `-cv`, `-time`)
+//! The seed command line's single-dash long options (`-size`, `-fov`, `-cm`, `-cv`, `-time`)
 //! are rewritten to their GNU long forms by [`SINGLE_DASH`] before clap sees them: clap has no
 //! single-dash long options. Only whole tokens are rewritten, so values are never touched.
 //!

@@ -17,7 +17,7 @@
 //!     whatever the distance, since only the vertices enter;
 //!   - a sphere: `P - C` normalised, at the hit `P = eye + t d`, turned to face the eye when
 //!     the eye is inside. `P` carries the f32 depth's error, at most `48u / cos(theta)` relative
-//!     (u = 2^-24, theta the angle of incidence; the bound tests/agreement.rs holds the kernels
+//!     (u = 2^-24, theta the angle of incidence; the bound tests/agreement/ holds the kernels
 //!     to), along the ray; that turns the normal by at most `48u t / (r cos(theta))` radians:
 //!     about 5e-5 face-on on a sphere 16 radii away, more towards its silhouette, where the
 //!     distance itself is ill-conditioned.

@@ -119,7 +119,7 @@ fn mt_leaks_through_shared_edges() {
     );
 }
 
-/// The original assignment's plane + determinants test leaks the same way.
+/// The seed's plane + determinants test leaks the same way.
 #[test]
 fn plane_leaks_through_shared_edges() {
     let r = rows(&["grid", "cube"], Method::Plane);

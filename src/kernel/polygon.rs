@@ -29,7 +29,7 @@
 //! (`kernel::edge_eps`, 8u, twice the error of `d . n`) covers that gap, so a ray through a
 //! vertex hits at least one polygon around it. Proven by
 //! `tests::fan_leaves_no_hole_at_shared_edges_and_vertex` here, the closed-mesh and grid tests of
-//! tests/agreement.rs (`*_has_no_holes`, pixel rays through shared edges and vertices) and
+//! tests/agreement/meshes.rs (`*_has_no_holes`, pixel rays through shared edges and vertices) and
 //! `default_leaves_no_holes_on_closed_meshes` in tests/stability.rs.
 //!
 //! Precision (f32, u = 2^-24): hit/miss is decided to within ~4u radians of each edge plane; the
@@ -37,7 +37,7 @@
 //! 60 degrees), so silhouettes may differ from the f64 oracle in rays that close to an edge.
 //! `t` errs by ~4u / cos(theta) relative, theta the angle between the ray and the normal: `d . N`
 //! carries an absolute error of ~4u, and it is cos(theta) itself; grazing hits lose precision
-//! (tests/agreement.rs bounds the relative error times cos(theta) by 48u; measured max 4.2u).
+//! (tests/agreement/main.rs bounds the relative error times cos(theta) by 48u; measured max 4.2u).
 //! `--precision auto` turns this bound into its re-decision rule (`render::redecide`): a hit
 //! whose bound exceeds 0.9e-5 relative is decided again in f64, which guarantees every depth
 //! within 1e-5 of the oracle's (docs/precision.md; `tests/auto.rs`).

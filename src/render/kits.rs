@@ -289,7 +289,7 @@ two_triangle_family!(
     woop_x8
 );
 
-/// The original assignment's plane + determinants (`methods::plane`).
+/// The seed's plane + determinants (`methods::plane`).
 pub struct Plane;
 fn plane1(k: &PlaneK<f32>, d: &V3<f32>) -> Option<f32> {
     plane_x1(k, *d)

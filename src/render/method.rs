@@ -26,7 +26,7 @@ pub enum Method {
     Mt,
     /// Woop–Benthin–Wald watertight triangles (+ stable spheres).
     Watertight,
-    /// The original assignment's plane + determinants (+ stable spheres).
+    /// The seed's plane + determinants (+ stable spheres).
     Plane,
     /// Textbook sphere quadratic (+ edge-plane polygons).
     Naive,

@@ -5,7 +5,7 @@
 //!
 //! Every view is rendered exactly as a one-camera [`Renderer`] for the same camera and options
 //! renders it: ids and depths are bit-identical to `lanecast -i SCENE` with that camera, at any
-//! thread count (tests/views.rs). What depends on the camera (the eye-relative primitive
+//! thread count (tests/views_cli/). What depends on the camera (the eye-relative primitive
 //! constants, the tiles' bins) is built per view; what does not (the scene, its validation, the
 //! range check's cluster bounds) is done once. A view leaves out the clusters of triangles it
 //! proves it cannot see (`render::cull`).

@@ -127,7 +127,7 @@ fn bad_arguments_are_rejected_naming_the_argument() {
 }
 
 /// `-fov=-30` was split by clap into `-f ov=-30` ("unexpected argument '-f'"): every
-/// single-dash option of the original assignment takes the `=` form as its GNU long form
+/// single-dash option of the seed takes the `=` form as its GNU long form
 /// does, and a bad value gets the same message, spelled as typed.
 #[test]
 fn single_dash_options_take_the_equals_form() {

@@ -7,7 +7,7 @@
 //! - `mt.rs`: Möller–Trumbore (1997), triangles.
 //! - `woop.rs`: Woop, Benthin, Wald (2013), watertight triangles, with the double-precision
 //!   fallback for edge functions that are exactly zero.
-//! - `plane.rs`: the original assignment's plane hit + inside test by edge cross products.
+//! - `plane.rs`: the seed's plane hit + inside test by edge cross products.
 //! - `sphere_naive.rs`: the textbook quadratic b^2 - 4ac.
 //! - `wide64.rs`: the default methods (edge planes, stable sphere) in `wide::f64x4` lanes.
 //! - `world.rs`: the default methods' constants computed the classic way, in f32 from world

@@ -1,4 +1,4 @@
-//! The original assignment's ray/triangle test: intersect the triangle's plane, then decide
+//! The seed's ray/triangle test: intersect the triangle's plane, then decide
 //! inside/outside by the sign of three determinants (edge cross products against the normal).
 //! The classic textbook form (e.g. Shirley & Marschner, "Fundamentals of Computer Graphics",
 //! 4.4.2, "inside-outside test").
