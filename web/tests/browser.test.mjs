@@ -368,6 +368,63 @@ test('the file picker opens a bare .obj with its framing camera, as -i x.obj doe
   await page.screenshot({ path: path.join(shots, 'bunny-obj.png') });
 });
 
+test("while a slow frame renders (in the worker), the page's thread stays free: timers run, a key press is handled", async (t) => {
+  // a bare mesh of 500,000 triangles (a rippled 500x500 grid): a frame of it takes long
+  const n = 500;
+  const lines = [];
+  for (let j = 0; j <= n; j++) {
+    for (let i = 0; i <= n; i++) lines.push(`v ${i} ${j} ${(Math.sin(i * 0.3) * Math.cos(j * 0.2)).toFixed(3)}`);
+  }
+  for (let j = 0; j < n; j++) {
+    for (let i = 0; i < n; i++) {
+      const a = j * (n + 1) + i + 1, b = a + 1, c = a + n + 1, d = c + 1;
+      lines.push(`f ${a} ${b} ${d}`, `f ${a} ${d} ${c}`);
+    }
+  }
+  const buffer = Buffer.from(lines.join('\n') + '\n');
+  await page.setInputFiles('#file', [{ name: 'grid.obj', mimeType: 'text/plain', buffer }]);
+  await page.waitForFunction(() => window.lanecastApp.sceneName === 'grid.obj' && !window.lanecastApp.dirty, null, { timeout: 60000 });
+  await page.evaluate(() => window.lanecastApp.settle());
+  // the frame asked, and a probe of the page's thread: a timer chain, each tick's gap kept
+  await page.evaluate(() => {
+    const app = window.lanecastApp;
+    const c = app.camera;
+    c.eye = c.eye.map((v, k) => v + [3, 2, 0][k]); // another view: a frame to render
+    app.dirty = true;
+    const p = (window.probe = { t0: performance.now(), end: 0, pressed: 0, ticks: 0, worst: 0 });
+    let last = p.t0;
+    const key = () => { p.pressed ||= performance.now(); };
+    window.addEventListener('keydown', key);
+    const frame = app.frame().then(() => { p.end = performance.now(); });
+    p.done = new Promise((ok) => {
+      const tick = () => {
+        const now = performance.now();
+        p.worst = Math.max(p.worst, now - last);
+        last = now;
+        p.ticks++;
+        if (p.end) ok();
+        else setTimeout(tick, 0);
+      };
+      setTimeout(tick, 0);
+    }).then(() => frame).then(() => window.removeEventListener('keydown', key));
+  });
+  // a key pressed as a user presses one, the frame on its way
+  await page.keyboard.press('x');
+  const r = await page.evaluate(async () => {
+    const p = window.probe;
+    await p.done;
+    return { ms: p.end - p.t0, pressed: p.pressed - p.t0, ticks: p.ticks, worst: p.worst, engine: window.lanecastApp.engine };
+  });
+  t.diagnostic(`frame ${r.ms.toFixed(0)} ms, key handled at ${r.pressed.toFixed(0)} ms, ${r.ticks} timer ticks, longest gap ${r.worst.toFixed(1)} ms`);
+  // the frame is slow: the page's thread would have been held all that time
+  assert.ok(r.ms > 100, `the frame took ${r.ms.toFixed(0)} ms: too fast to show anything`);
+  assert.ok(r.pressed > 0 && r.pressed < r.ms, `the key press was handled at ${r.pressed} ms, the frame drawn at ${r.ms} ms`);
+  // timers kept running all through it: no gap of more than 50 ms
+  assert.ok(r.worst < 50, `the page's thread was held ${r.worst.toFixed(0)} ms during a ${r.ms.toFixed(0)} ms frame`);
+  assert.ok(r.ticks >= r.ms / 50, `${r.ticks} timer ticks in ${r.ms.toFixed(0)} ms`);
+  assert.equal(r.engine, 'world'); // 500,000 triangles at 640x400
+});
+
 test('the colour controls shade as -cm, -cv and --seed do', async () => {
   await page.mouse.move(...(await at(5, 395)));
   await page.selectOption('#scene', 'scene4');
