@@ -92,7 +92,7 @@ impl Loaded {
     }
 
     /// The view from `camera` by `engine`, its buffers those of `spare` when it has the size:
-    /// the ids and depths `lanecast --accel tiles` or `--accel world` gives (precision auto).
+    /// the ids and depths `lanecast --accel auto` or `--accel world` gives (precision auto).
     fn render(&mut self, camera: &Camera, engine: Engine, spare: Option<Frame<f32>>) -> Frame<f32> {
         match engine {
             Engine::World => {
