@@ -29,14 +29,23 @@ impl Engine {
 /// The world engine renders a frame with at least one primitive for every `PIXELS_PER_WORLD`
 /// pixels; fewer primitives go the per-eye path.
 ///
-/// Measured in the page's module (node, one thread, web/bench.mjs's orbit, render alone):
-/// the per-eye path costs less a pixel, the world engine less a primitive. At 1280x720 the
-/// per-eye path renders the bunny (3,674 triangles) in 0.6x the world engine's time and a
-/// twice-subdivided teapot (15,872) in 0.6x, the world engine the armadillo (52,000) in 0.87x
-/// and the 832k armadillo in 0.27x; at 640x360 the world engine already wins on the
-/// armadillo. The two costs meet near one primitive for 32 pixels (about 29k primitives at
-/// 1280x720, 7k at 640x360). docs/performance.md ("Browser") has the page's figures.
-pub const PIXELS_PER_WORLD: u64 = 32;
+/// Measured in the page's module (node, one thread, the render alone, medians; the same loaded
+/// 2-core Intel Xeon, ratios within one run; docs/performance.md, "Browser"):
+/// - Orbiting at the scene's own distance, the per-eye path costs less a pixel and the world
+///   engine less a primitive. At 1280x720, per-eye against world: the bunny (3,674 triangles)
+///   40 against 67 ms, the twice-subdivided teapot (15,872) 83 against 142, the armadillo
+///   (52,000) 165 against 127, the 832k armadillo 1084 against 334. Orbit costs alone meet near
+///   one primitive for 32 pixels.
+/// - Close up (the eye at a tenth of the scene's distance or nearer, as the page's zoom allows),
+///   the world engine's frames take 40-60 times the per-eye path's: the armadillo 110 against
+///   6,060 ms, the 832k armadillo 916 against 23,090 ms at 1280x720.
+///
+/// So the world engine is chosen only where its orbit gain is large (3x at 0.9 primitives a
+/// pixel, the 832k armadillo at 1280x720) and not where it is within the noise (1.1-1.3x at
+/// 0.06, the armadillo): from one primitive for 4 pixels. The rule reads the primitive and pixel
+/// counts alone, never the number of frames, so a frame's bits do not depend on the frames
+/// before it.
+pub const PIXELS_PER_WORLD: u64 = 4;
 
 /// The engine for `scene` at `width` x `height`: from the scene's primitive count and the
 /// pixel count alone.
@@ -64,7 +73,7 @@ mod tests {
     /// The choice turns at one primitive for `PIXELS_PER_WORLD` pixels, at any size, and
     /// depends on nothing else.
     #[test]
-    fn the_choice_turns_at_one_primitive_for_32_pixels() {
+    fn the_choice_turns_at_one_primitive_for_4_pixels() {
         for (w, h) in [(64u32, 32u32), (97, 61), (320, 10)] {
             let at = (u64::from(w) * u64::from(h)).div_ceil(PIXELS_PER_WORLD) as usize;
             assert_eq!(choose(&scene(at), w, h), Engine::World, "{w}x{h}, {at}");

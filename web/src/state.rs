@@ -404,7 +404,7 @@ mod tests {
                     eye: first.look + glam::DQuat::from_rotation_y(a) * offset,
                     ..first
                 };
-                // 3,674 triangles: the world engine up to 117,568 pixels, then the per-eye path
+                // 3,674 triangles: the world engine up to 14,696 pixels, then the per-eye path
                 let (w, h) = (96 + 64 * k, 64 + 48 * k);
                 let got = s.render(w, h, Some(spec)).unwrap().clone();
                 let engine = s.engine.unwrap();
