@@ -26,6 +26,7 @@ pub mod views;
 pub use arrays::scene_from_arrays;
 use glam::DVec3;
 pub use memory::{parse_mesh_bytes, parse_scene_with};
+pub use range_clusters::RangeClusters;
 pub use shapes::{Iter, Mesh, PartRef, Shapes};
 use std::path::PathBuf;
 

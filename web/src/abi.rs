@@ -13,6 +13,9 @@
 //!   `FILE:LINE:COL: message` in the message; the previous scene stays).
 //! - `lc_render(width, height, camera)`: camera points at 10 f64 (eye, look, up, fov; a NaN
 //!   fov means the scene's, else the default), or is null for the scene's own camera.
+//! - `lc_set_engine(which)`: every later frame by the per-eye path (1), by the world engine
+//!   (2), or by the engine `engine::choose` names for the scene and size (0, the default);
+//!   `lc_engine()`: the engine of the last frame (0: none yet, 1, 2).
 //! - `lc_ids()`, `lc_depth()`: the last frame's ids (i32) and depths (f32), row-major.
 //! - `lc_shade(mode, variation, seed, hover, pinned)`: the last frame as RGBA, with the
 //!   primitives `hover` and `pinned` (-1: none) highlighted; returns its pointer.
@@ -22,6 +25,7 @@
 //!   mesh face, depth and hit point as JSON in the message.
 //! - `lc_message()`, `lc_message_len()`: the last message (UTF-8).
 
+use crate::engine::Engine;
 use crate::report::scene_json;
 use crate::state::State;
 use lanecast::{CameraSpec, ColorMode, Variation};
@@ -153,6 +157,30 @@ pub unsafe extern "C" fn lc_render(width: u32, height: u32, camera: *const f64) 
                 1
             }
         }
+    })
+}
+
+/// Every later frame by the per-eye path (`which` 1), by the world engine (2), or by the
+/// engine [`crate::engine::choose`] names (0, and any other value).
+#[unsafe(no_mangle)]
+pub extern "C" fn lc_set_engine(which: u32) {
+    with(|s| {
+        s.force = match which {
+            1 => Some(Engine::Tiles),
+            2 => Some(Engine::World),
+            _ => None,
+        }
+    })
+}
+
+/// The engine that rendered the last frame: 0 none yet, 1 the per-eye path, 2 the world
+/// engine.
+#[unsafe(no_mangle)]
+pub extern "C" fn lc_engine() -> u32 {
+    with(|s| match s.engine {
+        None => 0,
+        Some(Engine::Tiles) => 1,
+        Some(Engine::World) => 2,
     })
 }
 

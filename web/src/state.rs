@@ -1,28 +1,29 @@
 //! The session: the scene on show, the last frame and its camera, and the files a scene's
-//! `mesh` lines may name, with loading, rendering through [`Views`], shading and picking.
+//! `mesh` lines may name, with loading, rendering (by the engine `engine::choose` names),
+//! shading and picking.
 
+use crate::engine::{self, Engine};
 use crate::report::Pick;
 use glam::DVec3;
-use lanecast::scene::{Shape, parse_mesh_bytes, parse_scene_with};
-use lanecast::{Camera, CameraSpec, ColorMode, Frame, Options, Scene, Variation, Views};
+use lanecast::scene::{RangeClusters, Shape, parse_mesh_bytes, parse_scene_with};
+use lanecast::world::{self, World};
+use lanecast::{Camera, CameraSpec, ColorMode, Frame, Options, Renderer, Scene, Variation};
 use std::collections::HashMap;
 use std::path::Path;
+use std::sync::{Arc, OnceLock};
 
-// The scene and its views, in one value: `Views` borrows the scene. One `Views` serves every
-// frame of a scene, so its cluster bounds are built once and each frame leaves out what the
-// last one showed hidden (the library's `render::cull`).
-self_cell::self_cell!(
-    struct Prepared {
-        owner: Scene,
-        #[covariant]
-        dependent: Views,
-    }
-);
-
-/// A scene ready for views, with what picking needs beside it.
+/// A scene ready for views, with what picking needs beside it. It owns everything: the
+/// scene, and what is prepared from it once for every camera (the world engine's prepared
+/// scene, the range check's cluster bounds), each built by the first frame that needs it.
 pub struct Loaded {
-    /// The parsed scene and the views rendered from it.
-    prepared: Prepared,
+    /// The parsed scene.
+    scene: Scene,
+    /// `--accel world`'s prepared scene, built by the first frame the world engine renders.
+    world: OnceLock<Arc<World>>,
+    /// The world engine's working buffers, reused from frame to frame.
+    scratch: world::Scratch,
+    /// The f32 range check's cluster bounds, built by the first eye other than the scene's.
+    range: OnceLock<RangeClusters>,
     /// For each scene line holding a `mesh` (0 for a bare mesh), the id of its first face.
     mesh_first: HashMap<usize, usize>,
     /// The box around every primitive (min, max), for the page to keep its camera near it.
@@ -38,7 +39,7 @@ impl std::fmt::Debug for Loaded {
 }
 
 impl Loaded {
-    fn new(scene: Scene) -> Result<Loaded, String> {
+    fn new(scene: Scene) -> Loaded {
         let mesh_lines: Vec<usize> = scene.shapes.meshes().map(|(_, l)| l).collect();
         let mut mesh_first = HashMap::new();
         if !mesh_lines.is_empty() {
@@ -49,13 +50,14 @@ impl Loaded {
             }
         }
         let bounds = bounds(&scene);
-        let prepared = Prepared::try_new(scene, |s| Views::new(s, &Options::default()))
-            .map_err(|e| e.to_string())?;
-        Ok(Loaded {
-            prepared,
+        Loaded {
+            scene,
+            world: OnceLock::new(),
+            scratch: world::Scratch::default(),
+            range: OnceLock::new(),
             mesh_first,
             bounds,
-        })
+        }
     }
 
     /// The box around every primitive: (min, max) corners.
@@ -65,13 +67,50 @@ impl Loaded {
 
     /// The parsed scene.
     pub fn scene(&self) -> &Scene {
-        self.prepared.borrow_owner()
+        &self.scene
+    }
+
+    /// The world engine's prepared scene, once built (by the first frame it renders).
+    pub fn world(&self) -> Option<&Arc<World>> {
+        self.world.get()
     }
 
     /// The mesh face index of primitive `id` when it is a mesh triangle.
     pub fn face(&self, id: usize) -> Option<usize> {
         let line = self.scene().shapes.line(id);
         self.mesh_first.get(&line).map(|first| id - first)
+    }
+
+    /// The command line's f32 range check of the scene seen from `eye`: the scene's own eye
+    /// was checked when it loaded; any other is checked through cluster bounds built once.
+    fn check(&self, eye: DVec3) -> lanecast::Result<()> {
+        if eye == self.scene.camera.eye {
+            return Ok(());
+        }
+        let range = self.range.get_or_init(|| RangeClusters::new(&self.scene));
+        range.check(&self.scene, eye)
+    }
+
+    /// The view from `camera` by `engine`, its buffers those of `spare` when it has the size:
+    /// the ids and depths `lanecast --accel auto` or `--accel world` gives (precision auto).
+    fn render(&mut self, camera: &Camera, engine: Engine, spare: Option<Frame<f32>>) -> Frame<f32> {
+        match engine {
+            Engine::World => {
+                let scene = &self.scene;
+                let world = self.world.get_or_init(|| Arc::new(World::new(scene)));
+                let precision = world::Precision::Auto;
+                (world.render_marking(camera, precision, &mut self.scratch, spare)).0
+            }
+            Engine::Tiles => {
+                // the command line's default: `--accel auto` (tiles from two primitives on)
+                let renderer = Renderer::new(&self.scene, camera, &Options::default())
+                    .expect("the default options are consistent");
+                if let Some(spare) = spare {
+                    renderer.recycle(spare);
+                }
+                renderer.render()
+            }
+        }
     }
 }
 
@@ -84,6 +123,11 @@ pub struct State {
     pub loaded: Option<Loaded>,
     /// The last frame rendered, and the camera it was rendered from.
     pub frame: Option<(Frame<f32>, Camera)>,
+    /// The engine every frame is rendered by, when set (to measure one against the other);
+    /// `None`: [`engine::choose`]'s.
+    pub force: Option<Engine>,
+    /// The engine that rendered the last frame.
+    pub engine: Option<Engine>,
     rgba: Vec<u8>,
     npy: Vec<u8>,
     pub(crate) message: String,
@@ -111,20 +155,21 @@ impl State {
             parse_scene_with(bytes, path, &lookup)
         }
         .map_err(|e| e.to_string())?;
-        let loaded = Loaded::new(scene)?;
+        let loaded = Loaded::new(scene);
         self.frame = None;
         Ok(self.loaded.insert(loaded))
     }
 
     /// Renders the loaded scene from `spec` (the scene's camera when `None`) at the given size,
-    /// through [`Views`], reusing the last frame's buffers.
+    /// by the engine [`engine::choose`] names for the scene and size (or [`State::force`]'s),
+    /// reusing the last frame's buffers.
     pub fn render(
         &mut self,
         width: u32,
         height: u32,
         spec: Option<CameraSpec>,
     ) -> Result<&Frame<f32>, String> {
-        let loaded = self.loaded.as_ref().ok_or("no scene loaded")?;
+        let loaded = self.loaded.as_mut().ok_or("no scene loaded")?;
         let own = &loaded.scene().camera;
         // a camera of the caller's (the page's orbit, pan and zoom), not the scene's line
         let theirs = spec.filter(|s| (s.eye, s.look, s.up) != (own.eye, own.look, own.up));
@@ -133,11 +178,7 @@ impl State {
             None => Camera::for_scene(loaded.scene(), width, height, None),
         }
         .map_err(|e| e.to_string())?;
-        let views = loaded.prepared.borrow_dependent();
-        if let Some((spare, _)) = self.frame.take() {
-            views.recycle(spare);
-        }
-        let frame = views.render(&camera).map_err(|e| match (&theirs, e) {
+        loaded.check(camera.eye).map_err(|e| match (&theirs, e) {
             // the scene's file is not at fault (it loaded): the caller's view is, so the
             // message names the camera and not a scene line
             (Some(c), lanecast::Error::Input { msg, .. }) => {
@@ -150,6 +191,10 @@ impl State {
             }
             (_, e) => e.to_string(),
         })?;
+        let engine = (self.force).unwrap_or_else(|| engine::choose(loaded.scene(), width, height));
+        let spare = self.frame.take().map(|(f, _)| f);
+        let frame = loaded.render(&camera, engine, spare);
+        self.engine = Some(engine);
         Ok(&self.frame.insert((frame, camera)).0)
     }
 
@@ -338,9 +383,10 @@ mod tests {
         assert!(s.pick(41, 0).is_none());
     }
 
-    /// Frames of an orbit about the bunny, at changing sizes, through the one `Views` the
-    /// loaded scene keeps (each leaving out what the last showed hidden): each is the frame
-    /// of a renderer of its own, ids and depths.
+    /// Frames of an orbit about the bunny, at changing sizes (the chosen engine changing with
+    /// them), then by each engine forced, all through the one scene the session keeps (the
+    /// world engine's prepared scene and working buffers reused): each is the frame of a
+    /// one-camera renderer of its own with that engine's `--accel`, ids and depths.
     #[test]
     fn every_frame_of_an_orbit_renders_as_a_renderer_of_its_own() {
         let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
@@ -348,25 +394,47 @@ mod tests {
         let mut s = State::default();
         s.load("bunny.obj", &obj).unwrap();
         let first = s.loaded.as_ref().unwrap().scene().camera;
-        for k in 0..8u32 {
-            let a = f64::from(k) * 0.2;
-            let offset = first.eye - first.look;
-            let spec = CameraSpec {
-                eye: first.look + glam::DQuat::from_rotation_y(a) * offset,
-                ..first
-            };
-            let (w, h) = (96 + 8 * k, 64 + 4 * k);
-            let got = s.render(w, h, Some(spec)).unwrap().clone();
-            let scene = s.loaded.as_ref().unwrap().scene();
-            let camera = Camera::look_at(&spec, w, h).unwrap();
-            let want = lanecast::Renderer::new(scene, &camera, &Options::default())
-                .unwrap()
-                .render();
-            assert_eq!(got.ids, want.ids, "frame {k}");
-            let bits = |d: &[f32]| d.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-            assert_eq!(bits(&got.depth), bits(&want.depth), "frame {k}");
-            assert!(got.ids.iter().any(|&i| i >= 0), "frame {k} shows the bunny");
+        let mut seen = Vec::new();
+        for force in [None, Some(Engine::Tiles), Some(Engine::World)] {
+            s.force = force;
+            for k in 0..6u32 {
+                let a = f64::from(k) * 0.2;
+                let offset = first.eye - first.look;
+                let spec = CameraSpec {
+                    eye: first.look + glam::DQuat::from_rotation_y(a) * offset,
+                    ..first
+                };
+                // 3,674 triangles: the world engine up to 14,696 pixels, then the per-eye path
+                let (w, h) = (96 + 64 * k, 64 + 48 * k);
+                let got = s.render(w, h, Some(spec)).unwrap().clone();
+                let engine = s.engine.unwrap();
+                assert_eq!(
+                    engine,
+                    force.unwrap_or(engine::choose(s.loaded.as_ref().unwrap().scene(), w, h))
+                );
+                seen.push(engine);
+                let accel = match engine {
+                    Engine::Tiles => lanecast::Accel::Auto,
+                    Engine::World => lanecast::Accel::World,
+                };
+                let scene = s.loaded.as_ref().unwrap().scene();
+                let camera = Camera::look_at(&spec, w, h).unwrap();
+                let options = Options {
+                    accel,
+                    ..Options::default()
+                };
+                let want = Renderer::new(scene, &camera, &options).unwrap().render();
+                assert_eq!(got.ids, want.ids, "frame {k} by {engine:?}");
+                let bits = |d: &[f32]| d.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                assert_eq!(
+                    bits(&got.depth),
+                    bits(&want.depth),
+                    "frame {k} by {engine:?}"
+                );
+                assert!(got.ids.iter().any(|&i| i >= 0), "frame {k} shows the bunny");
+            }
         }
+        assert!(seen[..6].contains(&Engine::Tiles) && seen[..6].contains(&Engine::World));
     }
 
     #[test]

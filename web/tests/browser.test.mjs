@@ -78,7 +78,7 @@ function native(scene, extra = [], [w, h] = [W, H]) {
 /** The page's field of view as a -fov flag: the scene's, fitted to the canvas (view.js fitFov). */
 const fovFlag = async (p = page) => ['-fov', String(await p.evaluate(() => window.lanecastApp.view.fov))];
 /** The page's ids (a copy), as bytes. */
-const pageIds = async (p = page) => Buffer.from(await p.evaluate(() => window.btoaBytes(window.lanecastApp.lc.ids())), 'base64');
+const pageIds = async (p = page) => Buffer.from(await p.evaluate(async () => window.btoaBytes(await window.lanecastApp.lc.ids())), 'base64');
 const sameIds = (got, want) => got.equals(Buffer.from(want.ids.buffer, want.ids.byteOffset, want.ids.byteLength));
 /** Page coordinates of canvas pixel (x, y) (CSS pixels). */
 async function at(x, y, p = page) {
@@ -142,6 +142,7 @@ async function drawn(fn) {
   const n = await page.evaluate(() => window.lanecastApp.frames);
   await fn();
   await page.waitForFunction((k) => window.lanecastApp.frames > k, n, { timeout: 10000 });
+  await page.evaluate(() => window.lanecastApp.settle());
 }
 
 test('the canvas, beside the panel, shows scene1 as the command line renders it, pixel for pixel', async () => {
@@ -165,7 +166,7 @@ test('the canvas, beside the panel, shows scene1 as the command line renders it,
   }, want.png.toString('base64'));
   assert.equal(await snap('first'), W * H * 4);
   assert.equal(await differing('first', 'native'), 0, 'canvas differs from the native PNG');
-  const ids = Buffer.from(await page.evaluate(() => window.btoaBytes(window.lanecastApp.lc.ids())), 'base64');
+  const ids = Buffer.from(await page.evaluate(async () => window.btoaBytes(await window.lanecastApp.lc.ids())), 'base64');
   assert.ok(ids.equals(Buffer.from(want.ids.buffer, want.ids.byteOffset, 4 * W * H)), 'ids differ from --ids');
   const seen = want.ids.filter((i) => i >= 0).length;
   assert.ok(seen > W * H * 0.05, `the scene covers ${seen} pixels`);
@@ -201,9 +202,9 @@ test('clicking the top sphere pins id 5 with the native depth there', async () =
   // highlighted: the pinned sphere's pixels changed, and a ring 3 pixels wide around them;
   // nothing farther did
   await snap('lit');
-  const [inside, ring, outside] = await page.evaluate(() => {
+  const [inside, ring, outside] = await page.evaluate(async () => {
     const [a, b] = [window.snaps.first, window.snaps.lit];
-    const ids = window.lanecastApp.lc.ids();
+    const ids = await window.lanecastApp.lc.ids();
     const w = document.getElementById('view').width;
     const near = (k) => {
       for (let dy = -3; dy <= 3; dy++) {
@@ -230,7 +231,7 @@ test('clicking the top sphere pins id 5 with the native depth there', async () =
 
 test('dragging orbits the camera, and R resets it', async () => {
   await page.mouse.move(...(await at(10, 390))); // off the scene's primitives: no hover highlight
-  await page.evaluate(() => window.lanecastApp.frame());
+  await page.evaluate(() => window.lanecastApp.settle());
   await snap('before');
   const cam0 = await page.evaluate(() => structuredClone(window.lanecastApp.camera));
   const [ox, oy] = await at(120, 250);
@@ -238,7 +239,7 @@ test('dragging orbits the camera, and R resets it', async () => {
   await page.mouse.down();
   for (let k = 1; k <= 8; k++) await page.mouse.move(ox + 15 * k, oy - 4 * k);
   await page.mouse.up();
-  await page.evaluate(() => window.lanecastApp.frame());
+  await page.evaluate(() => window.lanecastApp.settle());
   const cam1 = await page.evaluate(() => structuredClone(window.lanecastApp.camera));
   assert.notDeepEqual(cam1.eye, cam0.eye);
   assert.deepEqual(cam1.look, cam0.look, 'orbiting keeps the look point');
@@ -256,7 +257,7 @@ test('dragging orbits the camera, and R resets it', async () => {
   await page.screenshot({ path: path.join(shots, 'orbit.png') });
   await page.mouse.move(...(await at(10, 390)));
   await page.keyboard.press('r');
-  await page.evaluate(() => window.lanecastApp.frame());
+  await page.evaluate(() => window.lanecastApp.settle());
   assert.deepEqual(await page.evaluate(() => window.lanecastApp.camera), cam0);
   await snap('reset');
   assert.equal(await differing('reset', 'before'), 0, 'R restores the picture');
@@ -284,7 +285,7 @@ test('a dropped bad file shows the command line\'s FILE:LINE:COL message and the
   assert.match(msg, /^bad\.sc:3:\d+: /);
   assert.ok(r.stderr.includes(msg), `CLI: ${r.stderr}\npage: ${msg}`);
   assert.equal(await page.evaluate(() => window.lanecastApp.sceneName), 'scene1.sc');
-  await page.evaluate(() => window.lanecastApp.frame());
+  await page.evaluate(() => window.lanecastApp.settle());
   await snap('still');
   assert.equal(await differing('still', 'kept'), 0, 'the previous scene is still shown');
   await page.screenshot({ path: path.join(shots, 'error.png') });
@@ -318,7 +319,7 @@ test('Export PNG saves the frame, ids .npy and depth .npy the --ids and --depth 
   await page.mouse.down();
   for (let k = 1; k <= 5; k++) await page.mouse.move(ox - 12 * k, oy + 3 * k);
   await page.mouse.up();
-  await page.evaluate(() => window.lanecastApp.frame());
+  await page.evaluate(() => window.lanecastApp.settle());
   const line = await page.inputValue('#camline');
   // the whole line shows: the field grows to hold it, nothing scrolled out of sight
   const [sw, cw, sh, ch] = await page.evaluate(() => {
@@ -340,7 +341,7 @@ test('Export PNG saves the frame, ids .npy and depth .npy the --ids and --depth 
     // the line's fov is the one fitted to the canvas, from the camera's own
     app.camera = { eye: n.slice(0, 3), look: n.slice(3, 6), up: n.slice(6, 9), fov: app.camera.fov };
     app.dirty = true;
-    app.frame();
+    return app.settle();
   }, nums);
   assert.equal(await page.evaluate(() => window.lanecastApp.view.fov), nums[9]);
   const want = native(path.join(tmp, 'pasted.sc'));
@@ -360,11 +361,68 @@ test('the file picker opens a bare .obj with its framing camera, as -i x.obj doe
   const obj = fs.readFileSync(path.join(root, 'scenes/meshes/bunny.obj'));
   await page.setInputFiles('#file', [{ name: 'bunny.obj', mimeType: 'text/plain', buffer: obj }]);
   await page.waitForFunction(() => window.lanecastApp.sceneName === 'bunny.obj' && !window.lanecastApp.dirty);
-  await page.evaluate(() => window.lanecastApp.frame());
+  await page.evaluate(() => window.lanecastApp.settle());
   const want = native('scenes/meshes/bunny.obj', await fovFlag());
   assert.ok(sameIds(await pageIds(), want), 'ids differ from --ids');
   assert.equal(await page.textContent('#source'), 'opened: bunny.obj');
   await page.screenshot({ path: path.join(shots, 'bunny-obj.png') });
+});
+
+test("while a slow frame renders (in the worker), the page's thread stays free: timers run, a key press is handled", async (t) => {
+  // a bare mesh of 500,000 triangles (a rippled 500x500 grid): a frame of it takes long
+  const n = 500;
+  const lines = [];
+  for (let j = 0; j <= n; j++) {
+    for (let i = 0; i <= n; i++) lines.push(`v ${i} ${j} ${(Math.sin(i * 0.3) * Math.cos(j * 0.2)).toFixed(3)}`);
+  }
+  for (let j = 0; j < n; j++) {
+    for (let i = 0; i < n; i++) {
+      const a = j * (n + 1) + i + 1, b = a + 1, c = a + n + 1, d = c + 1;
+      lines.push(`f ${a} ${b} ${d}`, `f ${a} ${d} ${c}`);
+    }
+  }
+  const buffer = Buffer.from(lines.join('\n') + '\n');
+  await page.setInputFiles('#file', [{ name: 'grid.obj', mimeType: 'text/plain', buffer }]);
+  await page.waitForFunction(() => window.lanecastApp.sceneName === 'grid.obj' && !window.lanecastApp.dirty, null, { timeout: 60000 });
+  await page.evaluate(() => window.lanecastApp.settle());
+  // the frame asked, and a probe of the page's thread: a timer chain, each tick's gap kept
+  await page.evaluate(() => {
+    const app = window.lanecastApp;
+    const c = app.camera;
+    c.eye = c.eye.map((v, k) => v + [3, 2, 0][k]); // another view: a frame to render
+    app.dirty = true;
+    const p = (window.probe = { t0: performance.now(), end: 0, pressed: 0, ticks: 0, worst: 0 });
+    let last = p.t0;
+    const key = () => { p.pressed ||= performance.now(); };
+    window.addEventListener('keydown', key);
+    const frame = app.frame().then(() => { p.end = performance.now(); });
+    p.done = new Promise((ok) => {
+      const tick = () => {
+        const now = performance.now();
+        p.worst = Math.max(p.worst, now - last);
+        last = now;
+        p.ticks++;
+        if (p.end) ok();
+        else setTimeout(tick, 0);
+      };
+      setTimeout(tick, 0);
+    }).then(() => frame).then(() => window.removeEventListener('keydown', key));
+  });
+  // a key pressed as a user presses one, the frame on its way
+  await page.keyboard.press('x');
+  const r = await page.evaluate(async () => {
+    const p = window.probe;
+    await p.done;
+    return { ms: p.end - p.t0, pressed: p.pressed - p.t0, ticks: p.ticks, worst: p.worst, engine: window.lanecastApp.engine };
+  });
+  t.diagnostic(`frame ${r.ms.toFixed(0)} ms, key handled at ${r.pressed.toFixed(0)} ms, ${r.ticks} timer ticks, longest gap ${r.worst.toFixed(1)} ms`);
+  // the frame is slow: the page's thread would have been held all that time
+  assert.ok(r.ms > 100, `the frame took ${r.ms.toFixed(0)} ms: too fast to show anything`);
+  assert.ok(r.pressed > 0 && r.pressed < r.ms, `the key press was handled at ${r.pressed} ms, the frame drawn at ${r.ms} ms`);
+  // timers kept running all through it: no gap of more than 50 ms
+  assert.ok(r.worst < 50, `the page's thread was held ${r.worst.toFixed(0)} ms during a ${r.ms.toFixed(0)} ms frame`);
+  assert.ok(r.ticks >= r.ms / 50, `${r.ticks} timer ticks in ${r.ms.toFixed(0)} ms`);
+  assert.equal(r.engine, 'world'); // 500,000 triangles at 640x400
 });
 
 test('the colour controls shade as -cm, -cv and --seed do', async () => {
@@ -380,7 +438,7 @@ test('the colour controls shade as -cm, -cv and --seed do', async () => {
     await page.selectOption('#mode', mode);
     await page.selectOption('#variation', variation);
     await page.fill('#seed', seed);
-    await page.evaluate(() => { window.lanecastApp.reshade = true; window.lanecastApp.frame(); });
+    await page.evaluate(() => { window.lanecastApp.reshade = true; return window.lanecastApp.settle(); });
     const want = native('scenes/scene4.sc', [...flags, ...(await fovFlag())]);
     await page.evaluate(async (b64) => {
       const bmp = await createImageBitmap(await (await fetch(`data:image/png;base64,${b64}`)).blob());
@@ -404,18 +462,18 @@ test('a 1280x720 view of the bunny: hover and pin a mesh face (the README screen
     return app.sceneName === 'bunny.sc' && c.width === 1280 - 300 && app.lc.width === c.width && app.lc.height === 720 && !app.dirty;
   });
   await page.mouse.move(...(await at(470, 300)));
-  await page.evaluate(() => window.lanecastApp.frame());
+  await page.evaluate(() => window.lanecastApp.settle());
   const hover = await page.evaluate(() => window.lanecastApp.hover);
   assert.ok(hover >= 0, 'the cursor is on the bunny');
   assert.match(await page.textContent('#hover'), new RegExp(`id ${hover} triangle`));
   // a click pins the face: its mesh face index and the scene's `mesh` line
   await page.evaluate(() => document.activeElement?.blur());
   await page.mouse.click(...(await at(470, 300)));
-  await page.evaluate(() => window.lanecastApp.frame());
+  await page.evaluate(() => window.lanecastApp.settle());
   const meshLine = fs.readFileSync(path.join(root, 'scenes/bunny.sc'), 'utf8').split('\n').findIndex((l) => /^mesh /.test(l)) + 1;
   assert.match(await page.textContent('#pinned'), new RegExp(`id ${hover}  triangle  mesh face ${hover} \\(scene line ${meshLine}\\)`));
   await page.mouse.move(...(await at(260, 420)));
-  await page.evaluate(() => window.lanecastApp.frame());
+  await page.evaluate(() => window.lanecastApp.settle());
   await page.screenshot({ path: path.join(shots, 'bunny-1280x720.png') });
 });
 
@@ -434,12 +492,12 @@ test('zoom stops where the scene stays framed and renderable, out and in; no err
     // 150 notches at the page's largest step: e^150 unclamped (the eye at 1e65)
     for (let n = 0; n < 150; n++) {
       await page.mouse.wheel(0, dy);
-      await page.evaluate(() => window.lanecastApp.frame());
+      await page.evaluate(() => window.lanecastApp.settle());
     }
     assert.equal(await page.isHidden('#error'), true, await page.textContent('#error'));
     const d = await dist();
     assert.ok(dy > 0 ? d > home && d < 100 * home : d < home && d > 1e-6 * home, `${name}: distance ${d} (home ${home})`);
-    const shown = await page.evaluate(() => window.lanecastApp.lc.ids().filter((i) => i >= 0).length);
+    const shown = await page.evaluate(async () => (await window.lanecastApp.lc.ids()).filter((i) => i >= 0).length);
     assert.ok(shown > 0, `${name}: nothing shown`);
     if (dy > 0) await page.screenshot({ path: path.join(shots, 'zoom-out.png') });
   }
@@ -451,18 +509,18 @@ test('zoom stops where the scene stays framed and renderable, out and in; no err
     const app = window.lanecastApp;
     app.camera = { ...app.camera, eye: app.camera.eye.map((v) => v * 1e25) };
     app.dirty = true;
-    app.frame();
+    return app.settle();
   });
   assert.match(await page.textContent('#error'), /^this view cannot be rendered \(camera eye \S+ \S+ \S+ look 0 22 0\): /);
-  await page.evaluate(() => window.lanecastApp.frame());
+  await page.evaluate(() => window.lanecastApp.settle());
   assert.deepEqual(await page.evaluate(() => window.lanecastApp.camera), good);
   assert.equal(await page.isHidden('#error'), false, 'the message stays until the next view');
   await drawn(() => page.keyboard.press('r'));
   assert.equal(await page.isHidden('#error'), true);
   // at home in a wide window: whole, ears to feet (the fov fitted), and a pinned face of its
   // 52,000 stands out
-  const rows = await page.evaluate(() => {
-    const ids = window.lanecastApp.lc.ids();
+  const rows = await page.evaluate(async () => {
+    const ids = await window.lanecastApp.lc.ids();
     const w = document.getElementById('view').width;
     let top = Infinity, bottom = -1;
     ids.forEach((id, k) => {
@@ -475,10 +533,10 @@ test('zoom stops where the scene stays framed and renderable, out and in; no err
   });
   assert.ok(rows[0] > 0 && rows[1] < H - 1, `the armadillo spans rows ${rows}: cropped`);
   await page.mouse.click(cx, cy);
-  await page.evaluate(() => window.lanecastApp.frame());
+  await page.evaluate(() => window.lanecastApp.settle());
   assert.match(await page.textContent('#pinned'), /triangle {2}mesh face \d+/);
   await page.mouse.move(...(await at(W - 5, H - 5)));
-  await page.evaluate(() => window.lanecastApp.frame());
+  await page.evaluate(() => window.lanecastApp.settle());
   await page.screenshot({ path: path.join(shots, 'armadillo-pinned.png') });
 });
 
@@ -505,7 +563,7 @@ test('fps is the median of recent frames, the first left out', async () => {
   await page.waitForFunction(() => window.lanecastApp.sceneName === 'scene2.sc' && !window.lanecastApp.dirty);
   assert.match(await page.textContent('#stats'), /fps –/); // the first frame is left out
   for (let k = 0; k < 5; k++) {
-    await page.evaluate(() => { window.lanecastApp.dirty = true; window.lanecastApp.frame(); });
+    await page.evaluate(() => { window.lanecastApp.dirty = true; return window.lanecastApp.settle(); });
   }
   assert.match(await page.textContent('#stats'), /\d+ fps \(median of 5\)/);
 });
@@ -553,8 +611,8 @@ test('at a device pixel ratio of 2 the canvas renders at device pixels; a tap hi
     // the cursor's CSS pixel picks the device pixels under it
     const [hx, hy] = [200, 150];
     await p.mouse.move(...(await at(hx, hy, p)));
-    await p.evaluate(() => window.lanecastApp.frame());
-    const under = await p.evaluate(([x, y]) => window.lanecastApp.lc.ids()[y * document.getElementById('view').width + x], [2 * hx, 2 * hy]);
+    await p.evaluate(() => window.lanecastApp.settle());
+    const under = await p.evaluate(async ([x, y]) => (await window.lanecastApp.lc.ids())[y * document.getElementById('view').width + x], [2 * hx, 2 * hy]);
     assert.ok(under >= 0, 'the cursor is on the bunny');
     assert.equal(await p.evaluate(() => window.lanecastApp.hover), under);
     // the resolution control: half the device pixels

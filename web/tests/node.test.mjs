@@ -1,7 +1,9 @@
 // The built module (web/dist/lanecast.wasm, through web/www/lanecast.js) against the native
-// command line: every seed, stress and bundled mesh scene (and tests/ply's files) at two sizes, ids and depths byte
-// for byte, as `lanecast -i SCENE -size WxH --ids I.npy --depth D.npy` writes them (the same
-// default options: precision auto, packet kernel). Then the API's other calls: pick, shade,
+// command line: every seed, stress and bundled mesh scene (and tests/ply's files) at two sizes,
+// by each engine the page renders with, ids and depths byte for byte, as `lanecast -i SCENE
+// -size WxH --accel A --ids I.npy --depth D.npy` writes them (the per-eye path: `--accel
+// auto`, the default; the world engine: `--accel world`; precision auto, packet kernel); and
+// the engine the module chooses gives that engine's frame. Then the API's other calls: pick, shade,
 // cameras other than the scene's, and errors worded as the command line words them.
 //
 // Needs web/build.sh to have run, and the native binary: LANECAST_BIN, else
@@ -13,7 +15,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { init, cameraLine } from '../www/lanecast.js';
+import { init, cameraLine, ACCEL } from '../www/lanecast.js';
 
 const web = path.dirname(path.dirname(fileURLToPath(import.meta.url)));
 const root = path.dirname(web);
@@ -50,13 +52,16 @@ function npy(file) {
   return { header, data: b.subarray(start) };
 }
 
-/** The native command line's ids and depths for `scene` at w x h, or its error message. */
-function native(scene, w, h) {
+/**
+ * The native command line's ids and depths for `scene` at w x h (`--accel accel`), or its
+ * error message.
+ */
+function native(scene, w, h, accel = 'auto') {
   const ids = path.join(tmp, 'ids.npy');
   const depth = path.join(tmp, 'depth.npy');
   // -o into the temp folder too: without it the image would land beside the scene
   const image = path.join(tmp, 'image.bmp');
-  const r = spawnSync(bin, ['-i', scene, '-size', `${w}x${h}`, '-o', image, '--ids', ids, '--depth', depth], {
+  const r = spawnSync(bin, ['-i', scene, '-size', `${w}x${h}`, '--accel', accel, '-o', image, '--ids', ids, '--depth', depth], {
     cwd: root,
     encoding: 'utf8',
   });
@@ -84,35 +89,50 @@ function files(scene) {
 const asBytes = (a) => Buffer.from(a.buffer, a.byteOffset, a.byteLength);
 
 for (const [group, scenes] of [['seed scenes', seeds], ['stress scenes', stress], ['mesh scenes', meshScenes], ['bare meshes', bareMeshes], ['PLY files of tests/ply', plys], ['bad scenes of tests/bad', bad]]) {
-  test(`${group}: ids and depths byte for byte as the native CLI's, or its refusal word for word`, (t) => {
+  test(`${group}: ids and depths byte for byte as the native CLI's, by either engine, or its refusal word for word`, (t) => {
     assert.ok(scenes.length > 0, `no ${group} found`);
     let compared = 0;
     let refused = 0;
+    const chosen = { tiles: 0, world: 0 };
     for (const scene of scenes) {
       const { bytes, meshes } = files(scene);
       for (const [w, h] of SIZES) {
-        const want = native(scene, w, h);
-        let got;
-        try {
-          lc.load(scene, bytes, meshes);
-          got = lc.render(null, w, h);
-        } catch (e) {
-          // the module refuses exactly what the command line refuses, with its message
-          assert.ok(want.error, `${scene} ${w}x${h}: the module refused what the CLI renders: ${e.message}`);
-          assert.ok(want.error.includes(e.message), `${scene}: CLI said ${want.error}, module said ${e.message}`);
-          refused++;
-          continue;
+        const frames = {};
+        for (const engine of ['tiles', 'world']) {
+          const want = native(scene, w, h, ACCEL[engine]);
+          let got;
+          try {
+            lc.setEngine(engine);
+            lc.load(scene, bytes, meshes);
+            got = lc.render(null, w, h);
+          } catch (e) {
+            // the module refuses exactly what the command line refuses, with its message
+            assert.ok(want.error, `${scene} ${w}x${h}: the module refused what the CLI renders: ${e.message}`);
+            assert.ok(want.error.includes(e.message), `${scene}: CLI said ${want.error}, module said ${e.message}`);
+            refused++;
+            continue;
+          }
+          const what = `${scene} ${w}x${h} by ${engine}`;
+          assert.ok(!want.error, `${what}: the CLI refused (${want.error}) what the module rendered`);
+          assert.equal(got.engine, engine);
+          assert.equal(got.ids.length, w * h);
+          assert.ok(asBytes(got.ids).equals(want.ids), `${what}: ids differ`);
+          assert.ok(asBytes(got.depth).equals(want.depth), `${what}: depths differ`);
+          assert.ok(got.ids.some((id) => id >= 0), `${what}: shows nothing`);
+          frames[engine] = want;
+          compared++;
         }
-        assert.ok(!want.error, `${scene} ${w}x${h}: the CLI refused (${want.error}) what the module rendered`);
-        assert.equal(got.ids.length, w * h);
-        assert.ok(asBytes(got.ids).equals(want.ids), `${scene} ${w}x${h}: ids differ`);
-        assert.ok(asBytes(got.depth).equals(want.depth), `${scene} ${w}x${h}: depths differ`);
-        assert.ok(got.ids.some((id) => id >= 0), `${scene} ${w}x${h}: shows nothing`);
-        compared++;
+        if (!frames.tiles) continue;
+        // the module's own choice: one of the two, its frame that engine's
+        lc.setEngine('auto');
+        const got = lc.render(null, w, h);
+        chosen[got.engine]++;
+        assert.ok(asBytes(got.ids).equals(frames[got.engine].ids), `${scene} ${w}x${h}: the chosen ${got.engine} frame differs`);
       }
     }
+    lc.setEngine('auto');
     assert.ok(compared > 0, `no ${group} frame compared`);
-    t.diagnostic(`${scenes.length} files, ${compared} frames identical, ${refused} refused alike`);
+    t.diagnostic(`${scenes.length} files, ${compared} frames identical, ${refused} refused alike; chosen: ${JSON.stringify(chosen)}`);
   });
 }
 
@@ -123,9 +143,9 @@ test('a camera other than the scene\'s renders as the CLI renders a scene with t
   assert.notEqual(moved, text);
   const file = path.join(tmp, 'moved.sc');
   fs.writeFileSync(file, moved);
-  const want = native(file, 200, 150);
-  assert.ok(!want.error, want.error);
   const got = lc.render(text, 200, 150, camera); // the issue's API: text, size, camera
+  const want = native(file, 200, 150, ACCEL[got.engine]);
+  assert.ok(!want.error, want.error);
   assert.ok(asBytes(got.ids).equals(want.ids), 'ids differ');
   assert.ok(asBytes(got.depth).equals(want.depth), 'depths differ');
   // and the scene's own camera differs from it
@@ -261,10 +281,10 @@ test('npy gives the frame\'s ids and depths as the command line\'s --ids and --d
   for (const scene of ['scenes/scene1.sc', 'scenes/bunny.sc']) {
     const { bytes, meshes } = files(scene);
     lc.load(scene, bytes, meshes);
-    lc.render(null, 97, 61);
+    const { engine } = lc.render(null, 97, 61);
     const ids = path.join(tmp, 'n-ids.npy');
     const depth = path.join(tmp, 'n-depth.npy');
-    execFileSync(bin, ['-i', scene, '-size', '97x61', '-o', path.join(tmp, 'n.png'), '--ids', ids, '--depth', depth], { cwd: root });
+    execFileSync(bin, ['-i', scene, '-size', '97x61', '--accel', ACCEL[engine], '-o', path.join(tmp, 'n.png'), '--ids', ids, '--depth', depth], { cwd: root });
     assert.ok(Buffer.from(lc.npy('ids')).equals(fs.readFileSync(ids)), `${scene}: ids .npy differs`);
     assert.ok(Buffer.from(lc.npy('depth')).equals(fs.readFileSync(depth)), `${scene}: depth .npy differs`);
   }

@@ -1,8 +1,11 @@
 // The page: a canvas filling what the panel leaves of the window, at device pixels, rendered by
 // lanecast.wasm from the scene loaded once, re-rendered from the new camera on every orbit,
-// pan, zoom or control change. The camera rules (zoom limits, framing, the URL's camera, the
-// fps figure) are in view.js.
-import { init, cameraLine } from './lanecast.js';
+// pan, zoom or control change. The module runs in a worker (worker.js, reached through
+// remote.js): this thread handles input and draws the frames that come back, one frame asked
+// at a time, always from the newest camera, so a slow frame never holds up the page. The
+// camera rules (zoom limits, framing, the URL's camera, the fps figure) are in view.js.
+import { cameraLine } from './lanecast.js';
+import { Remote } from './remote.js';
 import { FrameTimes, cameraParam, clampCamera, download, fitFov, parseCameraParam, zoom } from './view.js';
 
 const $ = (id) => document.getElementById(id);
@@ -16,7 +19,7 @@ const ui = {
   source: $('source'), hide: $('hide'), show: $('show'), panel: $('panel'),
 };
 
-const lc = await init(fetch('lanecast.wasm'));
+const lc = new Remote();
 const app = {
   lc,
   camera: null, // {eye, look, up, fov}: fov as framed for a 4:3 frame (view.js fitFov)
@@ -26,8 +29,9 @@ const app = {
   good: null, // the last camera that rendered
   hover: -1,
   pinned: -1,
-  dirty: true, // re-render
+  dirty: true, // re-render (cleared once a frame from the camera and size asked is drawn)
   reshade: false, // shade again only (hover, colours)
+  loading: 0, // scenes being loaded: no frame is asked meanwhile
   frames: 0, // frames drawn (for tests and the benchmark)
   last: { frameMs: 0, renderMs: 0 },
   times: new FrameTimes(30), // the fps figure: median of the recent frames
@@ -56,8 +60,15 @@ function showError(msg) {
   ui.error.hidden = !msg;
 }
 
-function setScene(name, bytes, files, menuName = '') {
-  const scene = lc.load(name, bytes, files); // throws the CLI's message; the old scene stays
+async function setScene(name, bytes, files, menuName = '') {
+  let scene;
+  app.loading++;
+  try {
+    await inflight; // the frame asked before is drawn first
+    scene = await lc.load(name, bytes, files); // throws the CLI's message; the old scene stays
+  } finally {
+    app.loading--;
+  }
   const c = scene.camera;
   app.home = { eye: c.eye, look: c.look, up: c.up, fov: c.fov ?? scene.default_fov };
   app.camera = structuredClone(app.home);
@@ -94,7 +105,7 @@ async function openMenu(entry) {
   try {
     const files = {};
     for (const m of entry.meshes) files[m] = await fetchBytes(`scenes/${m}`);
-    setScene(entry.file, await fetchBytes(`scenes/${entry.file}`), files, entry.name);
+    await setScene(entry.file, await fetchBytes(`scenes/${entry.file}`), files, entry.name);
     ui.scene.value = entry.name;
   } catch (e) {
     showError(e.message);
@@ -112,7 +123,7 @@ async function openFiles(list) {
   const others = {};
   for (const f of files) if (f !== scene) others[f.name] = new Uint8Array(await f.arrayBuffer());
   try {
-    setScene(scene.name, new Uint8Array(await scene.arrayBuffer()), others);
+    await setScene(scene.name, new Uint8Array(await scene.arrayBuffer()), others);
   } catch (e) {
     showError(e.message);
   }
@@ -154,8 +165,8 @@ ui.res.oninput = () => resize();
 const stem = () => app.sceneName.replace(/^.*\//, '').replace(/\.[^.]*$/, '') || 'lanecast';
 ui.png.onclick = () => canvas.toBlob((blob) => download(`${stem()}.png`, blob), 'image/png');
 // the frame's buffers, as the command line's --ids and --depth write them
-ui.idsnpy.onclick = () => download(`${stem()}-ids.npy`, lc.npy('ids'));
-ui.depthnpy.onclick = () => download(`${stem()}-depth.npy`, lc.npy('depth'));
+ui.idsnpy.onclick = async () => download(`${stem()}-ids.npy`, await lc.npy('ids'));
+ui.depthnpy.onclick = async () => download(`${stem()}-depth.npy`, await lc.npy('depth'));
 
 // the panel: hidden and shown by H, or by its buttons (a click or a tap)
 function setPanel(open) {
@@ -267,8 +278,19 @@ function describe(p) {
   return `id ${p.id}  ${p.type}  ${where}\ndepth ${p.depth}\nhit ${pt}`;
 }
 
-function hoverAt(x, y) {
+// the newest pick asked: an answer to an older one (the pointer moved on) is dropped
+let picks = 0;
+let picking = Promise.resolve(); // the newest pick, answered
+function ask(x, y) {
+  const asked = ++picks;
   const p = lc.pick(x, y);
+  picking = p.catch(() => null);
+  return p.then((v) => (asked === picks ? v : undefined));
+}
+
+async function hoverAt(x, y) {
+  const p = await ask(x, y);
+  if (p === undefined) return;
   const id = p ? p.id : -1;
   ui.hover.textContent = p ? `under cursor: id ${p.id} ${p.type}` : '';
   if (id !== app.hover) {
@@ -277,8 +299,9 @@ function hoverAt(x, y) {
   }
 }
 
-function pin(x, y) {
-  const p = lc.pick(x, y);
+async function pin(x, y) {
+  const p = await ask(x, y);
+  if (p === undefined) return;
   app.pinned = p ? p.id : -1;
   app.pick = p;
   ui.pinned.textContent = p ? `pinned: ${describe(p)}` : '';
@@ -310,21 +333,56 @@ function shading() {
   };
 }
 
-/** Renders (when the camera or size changed) and draws; returns whether it drew. */
-function frame() {
+// the frame asked of the worker and not yet drawn (a promise of whether it drew), or null
+let inflight = null;
+
+/**
+ * Asks for a frame when the camera, the size or the shading changed, and draws it; resolves
+ * to whether it drew. One frame is asked at a time: a call while one is on its way waits for
+ * it, then asks for the newest camera's.
+ */
+async function frame() {
+  while (inflight) await inflight;
   resize();
-  if (!app.camera || !(app.dirty || app.reshade)) return false;
+  if (!app.camera || app.loading || !(app.dirty || app.reshade)) return false;
+  inflight = draw();
+  try {
+    return await inflight;
+  } finally {
+    inflight = null;
+  }
+}
+app.frame = frame;
+
+/**
+ * Resolves once the page shows everything asked of it: the picks answered, and frames drawn
+ * until none is due (for the tests, and for a script driving the page).
+ */
+app.settle = async () => {
+  for (;;) {
+    await picking;
+    while (app.loading || inflight) await (inflight ?? new Promise((ok) => setTimeout(ok, 5)));
+    const drew = await frame();
+    if (!drew && !app.loading && !inflight && !(app.dirty || app.reshade)) return;
+    if (!drew) await new Promise((ok) => setTimeout(ok, 5));
+  }
+};
+
+async function draw() {
   const t0 = performance.now();
   const w = canvas.width, h = canvas.height;
+  // what this frame shows; a change made while it is on its way asks for the next
+  const camera = JSON.stringify(app.camera);
+  const style = shading();
   let renderMs = app.last.renderMs;
-  let rgba;
-  if (app.dirty) {
-    let f;
+  let f;
+  const rendered = app.dirty;
+  if (rendered) {
     // the scene's framing kept at any window shape: a wide canvas gets the fov that shows the
     // height a 4:3 frame shows
     const view = { ...app.camera, fov: fitFov(app.camera.fov, w, h) };
     try {
-      f = lc.render(null, w, h, view, shading());
+      f = await lc.render(w, h, view, style);
     } catch (e) {
       // a view the engine refuses (which the zoom and pan limits should leave none of): its
       // message, which names the camera and not the scene, and back to the last camera that
@@ -341,25 +399,28 @@ function frame() {
       return false;
     }
     if (app.viewError && !--app.viewError) showError('');
-    app.good = structuredClone(app.camera);
+    app.good = JSON.parse(camera);
     app.view = view;
+    app.engine = f.engine;
     renderMs = f.ms;
-    rgba = f.rgba;
     ui.camline.value = cameraLine(view);
     fitCamline();
     shareView();
   } else {
-    rgba = lc.shade(shading());
-    if (rgba.length !== w * h * 4) {
+    f = await lc.shade(style);
+    if (f.rgba.length !== w * h * 4) {
       app.reshade = false; // no frame to shade (the last view was refused) or an old size
       return false;
     }
   }
-  // straight from wasm memory, no copy (the view is fresh: taken after the calls)
-  ctx.putImageData(new ImageData(rgba, w, h), 0, 0);
+  // the canvas may have been resized while the frame was on its way: draw what came
+  if (canvas.width === f.width && canvas.height === f.height) {
+    ctx.putImageData(new ImageData(f.rgba, f.width, f.height), 0, 0);
+  }
   const frameMs = performance.now() - t0;
-  const rendered = app.dirty;
-  app.dirty = app.reshade = false;
+  const same = (canvas.width === w && canvas.height === h && JSON.stringify(app.camera) === camera);
+  if (same) app.dirty = false;
+  if (JSON.stringify(shading()) === JSON.stringify(style)) app.reshade = false;
   app.frames++;
   if (rendered) {
     app.last = { frameMs, renderMs };
@@ -368,14 +429,14 @@ function frame() {
     const fps = app.times.fps();
     const n = app.times.times.length;
     ui.stats.textContent =
-      `${w}x${h}  frame ${frameMs.toFixed(1)} ms (render ${renderMs.toFixed(1)})\n` +
+      `${w}x${h}  frame ${frameMs.toFixed(1)} ms (render ${renderMs.toFixed(1)}, ${f.engine})\n` +
       `${(rays / 1e6).toFixed(1)} Mrays/s  ` +
       (n ? `${fps.toFixed(0)} fps (median of ${n})` : 'fps –') +
       `  ${lc.scene.primitives} primitives`;
   }
   return true;
 }
-app.frame = frame;
+
 
 /**
  * The camera line's field grows to show the whole line: by CSS (field-sizing) where the
@@ -406,7 +467,7 @@ function shareView() {
 }
 
 function loop() {
-  frame();
+  if (!inflight) frame();
   requestAnimationFrame(loop);
 }
 

@@ -5,7 +5,7 @@
 //   import { init } from './lanecast.js';
 //   const lc = await init(fetch('lanecast.wasm'));   // or bytes (node: fs.readFileSync)
 //   lc.load('scene1.sc', text);                        // throws Error('FILE:LINE:COL: ...')
-//   const f = lc.render(null, 1280, 720);              // {ids, depth, rgba, width, height, ms}
+//   const f = lc.render(null, 1280, 720);              // {ids, depth, rgba, width, height, ms, engine}
 //   lc.pick(640, 360);                                 // {id, type, line, face, depth, point}
 //   lc.npy('ids');                                     // the frame's --ids file (or 'depth')
 //
@@ -32,6 +32,10 @@ export async function init(source) {
 }
 
 const MODES = { random: 0, ordered: 1, shade: 2 };
+// the engines by their number in the module's calls (0: the module's choice)
+const ENGINES = ['auto', 'tiles', 'world'];
+/** The command line's --accel for a frame of `engine`'s bits. */
+export const ACCEL = { tiles: 'auto', world: 'world' };
 const VARIATIONS = { linear: 0, log: 1 };
 
 export class Lanecast {
@@ -112,7 +116,21 @@ export class Lanecast {
     this.width = width;
     this.height = height;
     const rgba = this.shade(shading);
-    return { ids: this.ids(), depth: this.depth(), rgba, width, height, ms };
+    return { ids: this.ids(), depth: this.depth(), rgba, width, height, ms, engine: this.engine() };
+  }
+
+  /**
+   * The engine later frames are rendered by: 'tiles' (the per-eye path, the command line's
+   * default), 'world' (`--accel world`), or 'auto' (the module's choice from the scene and
+   * the image size).
+   */
+  setEngine(which) {
+    this.x.lc_set_engine(ENGINES.indexOf(which) > 0 ? ENGINES.indexOf(which) : 0);
+  }
+
+  /** The engine of the last frame: 'tiles' or 'world' ('auto' before a frame). */
+  engine() {
+    return ENGINES[this.x.lc_engine()] ?? 'auto';
   }
 
   /** The last frame's ids (-1: background), row-major. */
