@@ -97,14 +97,20 @@ impl View {
         }
     }
 
-    /// The pixel box of a polygon from its vertices' projections.
+    /// The pixel box of a polygon from its vertices' projections `p`, or, when a vertex lies
+    /// near or behind the eye plane, from the part of the polygon (world-space vertices `w`)
+    /// the frustum can reach ([`View::clipped_box`]).
     #[inline(always)]
-    pub fn polygon_box<const N: usize>(&self, p: [[f32; 3]; N]) -> Option<[u16; 4]> {
+    pub fn polygon_box<const N: usize>(
+        &self,
+        p: [[f32; 3]; N],
+        w: impl FnOnce() -> [DVec3; N],
+    ) -> Option<[u16; 4]> {
         if p.iter().all(|q| q[2] < -NEAR_COS) {
             return None;
         }
         if p.iter().any(|q| q[2].is_nan() || q[2] <= NEAR_COS) {
-            return Some(self.full());
+            return self.clipped_box(&w());
         }
         let (mut x0, mut x1, mut y0, mut y1) = (p[0][0], p[0][0], p[0][1], p[0][1]);
         for q in &p[1..] {
@@ -114,6 +120,71 @@ impl View {
             y1 = y1.max(q[1]);
         }
         self.clip(x0, x1, y0, y1)
+    }
+
+    /// The pixel box of a polygon (world-space vertices `w`) that reaches near or behind the
+    /// eye plane, in f64. Every point P a pixel ray reaches has `z = P . f >= |P| / lmax`
+    /// (`lmax` the longest pixel ray's length over its forward component), and every point
+    /// of the polygon is at least `R = max |w_i - eye| - diam` from the eye: so the rays meet
+    /// only its part with `z >= R / lmax`. That part (the polygon clipped to the plane
+    /// `z = R / (2 lmax)`, Sutherland-Hodgman) is convex and in front of the eye, so its
+    /// vertices' projections bound it; they are boxed with one more pixel of margin than a
+    /// polygon's box (the f64 clip's rounding is far below it). `None` when no part is left;
+    /// the whole image when the polygon passes within rounding of the eye (`R <= 0`).
+    pub fn clipped_box<const N: usize>(&self, w: &[DVec3; N]) -> Option<[u16; 4]> {
+        let (f, r, u) = (self.t64.f, self.t64.r, self.t64.u);
+        let cam = |p: DVec3| {
+            let d = p - self.eye;
+            let c = |a: [f64; 3]| d.x * a[0] + d.y * a[1] + d.z * a[2];
+            [c(r), c(u), c(f), d.length()]
+        };
+        let q: [[f64; 4]; N] = std::array::from_fn(|i| cam(w[i]));
+        let mut diam = 0.0f64;
+        for i in 0..N {
+            for j in i + 1..N {
+                diam = diam.max((w[i] - w[j]).length());
+            }
+        }
+        let far = q.iter().fold(0.0f64, |m, v| m.max(v[3]));
+        let reach = (far - diam) * (1.0 - 1e-9);
+        if !(reach > 0.0) {
+            return Some(self.full());
+        }
+        let z0 = reach / (2.0 * self.basis.lmax);
+        let (hw, hh) = (self.half_w as f64, self.half_h as f64);
+        let (mut x0, mut x1, mut y0, mut y1) = (
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        );
+        let mut any = false;
+        let mut add = |x: f64, y: f64, z: f64| {
+            let px = (x / z / hw + 1.0) * self.w as f64 * 0.5 - 0.5;
+            let py = (1.0 - y / z / hh) * self.h as f64 * 0.5 - 0.5;
+            (x0, x1, y0, y1) = (x0.min(px), x1.max(px), y0.min(py), y1.max(py));
+            any = true;
+        };
+        for i in 0..N {
+            let (a, b) = (q[i], q[(i + 1) % N]);
+            if a[2] >= z0 {
+                add(a[0], a[1], a[2]);
+            }
+            if (a[2] - z0) * (b[2] - z0) < 0.0 {
+                let s = (z0 - a[2]) / (b[2] - a[2]);
+                add(a[0] + (b[0] - a[0]) * s, a[1] + (b[1] - a[1]) * s, z0);
+            }
+        }
+        if !any {
+            return None;
+        }
+        let clamp = |v: f64| v.clamp(-1e9, 1e9) as f32;
+        self.clip(
+            clamp(x0 - 1.0),
+            clamp(x1 + 1.0),
+            clamp(y0 - 1.0),
+            clamp(y1 + 1.0),
+        )
     }
 
     /// The pixel box of a sphere: interval bounds on `sx` and `sy` over its bounding cube.
@@ -268,14 +339,14 @@ fn band(
                 for p in k.first..k.first + k.len {
                     let i = p as usize;
                     let (v, id, g) = (world.tris[i], world.tri_ids[i], world.tri_shape[i]);
-                    raster_polygon(v, id, g, Some((p, false)), view, s, st);
+                    raster_polygon(v, id, g, Some((p, false)), (view, &world.verts), s, st);
                 }
             }
             Item::Quads(k) if !hidden(&k, view, st) => {
                 for p in k.first..k.first + k.len {
                     let i = p as usize;
                     let (v, id, g) = (world.quads[i], world.quad_ids[i], world.quad_shape[i]);
-                    raster_polygon(v, id, g, Some((p, true)), view, s, st);
+                    raster_polygon(v, id, g, Some((p, true)), (view, &world.verts), s, st);
                 }
             }
             Item::Sphere(c, r, id) => raster_sphere(c, r, id, view, st),
@@ -299,10 +370,10 @@ fn band(
         let i = p as usize;
         if quad {
             let (v, id, g) = (world.quads[i], world.quad_ids[i], world.quad_shape[i]);
-            raster_polygon(v, id, g, None, view, s, st);
+            raster_polygon(v, id, g, None, (view, &world.verts), s, st);
         } else {
             let (v, id, g) = (world.tris[i], world.tri_ids[i], world.tri_shape[i]);
-            raster_polygon(v, id, g, None, view, s, st);
+            raster_polygon(v, id, g, None, (view, &world.verts), s, st);
         }
     }
     st.waiting = waiting;
@@ -484,7 +555,7 @@ fn raster_polygon<const N: usize>(
     id: i32,
     g: f32,
     front: Option<(u32, bool)>,
-    view: &View,
+    (view, verts): (&View, &[DVec3]),
     s: &Scratch,
     st: &mut Band,
 ) {
@@ -508,7 +579,7 @@ fn raster_polygon<const N: usize>(
         st.waiting.push(me);
         return;
     }
-    let Some(bx) = view.polygon_box(p) else {
+    let Some(bx) = view.polygon_box(p, || v.map(|i| verts[i as usize])) else {
         return;
     };
     if st.rows(bx).is_empty() {

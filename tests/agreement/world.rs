@@ -150,3 +150,44 @@ fn world_views_depend_on_their_camera_alone() {
         }
     }
 }
+
+/// An eye among the primitives (near and inside them, random directions, fields of view up to
+/// 150 degrees): polygons reach behind the eye plane and are boxed from the part the frustum
+/// can reach (`View::clipped_box`); the oracle's pixels still, and no holes in a closed mesh
+/// seen from inside.
+#[test]
+fn world_eyes_among_the_primitives_agree_with_the_oracle() {
+    for seed in 1..=8u64 {
+        let mut rng = Rng::new(seed * 7919);
+        let mut shapes = random_triangles(&mut rng, 60);
+        shapes.extend(random_quads(&mut rng, 20));
+        shapes.extend(random_spheres(&mut rng, 4));
+        let eye = rng.in_box(DVec3::ZERO, 3.0);
+        let look = eye + rng.direction();
+        let mut up = rng.direction();
+        if (look - eye).normalize().cross(up).length() < 0.1 {
+            up = (look - eye).any_orthonormal_vector();
+        }
+        let camera = spec(eye, look, up, rng.range(40.0, 150.0));
+        let scene = build_scene(&format!("among{seed}.sc"), camera, &shapes);
+        for precision in [Precision::Auto, Precision::F64] {
+            world_check(&format!("eye among #{seed}"), scene.clone(), precision);
+        }
+        let ico = triangles(&icosphere(DVec3::ZERO, 2.0, 3));
+        let inside = spec(rng.in_box(DVec3::ZERO, 1.0), look, up, 90.0);
+        let scene = Arc::new(build_scene(&format!("inside{seed}.sc"), inside, &ico));
+        let world = World::new(&scene);
+        let cam = camera_of(&scene, W, H);
+        let frame = world.render(&cam, Precision::F32);
+        let (_, oracle) = lanecast::compare::compare_frame(&scene, &cam, &frame);
+        let holes = (0..frame.ids.len())
+            .filter(|&k| oracle.ids[k] >= 0 && frame.ids[k] < 0)
+            .count();
+        assert_eq!(holes, 0, "icosphere from inside #{seed}: {holes} holes");
+        world_check(
+            &format!("icosphere from inside #{seed}"),
+            (*scene).clone(),
+            Precision::Auto,
+        );
+    }
+}
