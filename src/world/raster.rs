@@ -147,7 +147,7 @@ impl View {
         }
         let far = q.iter().fold(0.0f64, |m, v| m.max(v[3]));
         let reach = (far - diam) * (1.0 - 1e-9);
-        if !(reach > 0.0) {
+        if reach.is_nan() || reach <= 0.0 {
             return Some(self.full());
         }
         let z0 = reach / (2.0 * self.basis.lmax);
