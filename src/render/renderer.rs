@@ -90,7 +90,7 @@ enum Job<'s> {
     /// and the view's working buffers.
     World(
         Arc<World>,
-        crate::camera::Camera,
+        Box<crate::camera::Camera>,
         world::Precision,
         Mutex<world::Scratch>,
     ),
@@ -184,7 +184,7 @@ impl<'s> Renderer<'s> {
         Renderer {
             width: camera.width as usize,
             height: camera.height as usize,
-            job: Job::World(world, *camera, precision, Mutex::default()),
+            job: Job::World(world, Box::new(*camera), precision, Mutex::default()),
             spare: Mutex::new(spare.frame),
         }
     }
