@@ -120,7 +120,9 @@ mod tests {
             m[i][j] = v;
             from_world_to_camera(&m)
         };
-        assert!(with(0, 0, 1.0 + 0.5 * RIGID_TOL).is_ok());
+        // an entry 1 + d puts 2d (and d^2) into R R^T - I
+        assert!(with(0, 0, 1.0 + 0.4 * RIGID_TOL).is_ok());
+        assert!(with(0, 0, 1.0 + 0.6 * RIGID_TOL).is_err());
         for (i, j, v, says) in [
             (0, 0, 1.0 + 3.0 * RIGID_TOL, "not a rigid transform"),
             (1, 0, 0.01, "not a rigid transform"),
