@@ -50,7 +50,7 @@ fn seed_scenes(c: &mut Criterion) {
         for &(w, h) in sizes {
             let camera = Camera::new(
                 &scene.camera,
-                scene.camera.fov_deg.unwrap_or(DEFAULT_FOV),
+                scene.camera.fov_deg().unwrap_or(DEFAULT_FOV),
                 w,
                 h,
             );
@@ -85,7 +85,7 @@ fn block_shape(c: &mut Criterion) {
         let scene = load_scene(Path::new(&path)).expect("seed scene parses");
         let camera = Camera::new(
             &scene.camera,
-            scene.camera.fov_deg.unwrap_or(DEFAULT_FOV),
+            scene.camera.fov_deg().unwrap_or(DEFAULT_FOV),
             w,
             h,
         );

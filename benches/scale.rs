@@ -82,7 +82,7 @@ fn scaling_scene(kind: &str, n: usize) -> Scene {
             eye: DVec3::ZERO,
             look: DVec3::Z,
             up: DVec3::Y,
-            fov_deg: Some(60.0),
+            lens: Some(lanecast::Lens::Fov(60.0)),
         },
         shapes: shapes.into(),
         warnings: Vec::new(),
@@ -102,7 +102,7 @@ fn bench_scene(
         .unwrap();
     let camera = Camera::new(
         &scene.camera,
-        scene.camera.fov_deg.unwrap_or(DEFAULT_FOV),
+        scene.camera.fov_deg().unwrap_or(DEFAULT_FOV),
         w,
         h,
     );

@@ -82,7 +82,7 @@ def lanecast(scene, views, size, threads, tmp, accel):
                   str(threads), "--accel", accel])
     whole = time.perf_counter() - t0
     s = json.loads(stats.read_text())
-    each = s["views"]["each"]
+    each = [v for v in s["views"] if not v["skipped"]]
     per_view = statistics.median(v["setup_s"] + v["render_s"] for v in each)
     setup = statistics.median(v["setup_s"] for v in each)
     render = statistics.median(v["render_s"] for v in each)

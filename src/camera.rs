@@ -3,21 +3,43 @@
 //! Formula (the format's contract, so any other tool can reproduce a pixel):
 //! ```text
 //! f = normalize(look - eye); r = normalize(cross(f, up)); u = cross(r, f)
-//! half_w = tan(fov/2); half_h = half_w * H / W          (fov horizontal)
-//! pixel (x, y), y = 0 is the TOP row:
-//!   sx = (2*(x + 0.5)/W - 1) * half_w
-//!   sy = (1 - 2*(y + 0.5)/H) * half_h
+//! intrinsics fx, fy, cx, cy in pixels (skew 0); a horizontal field of view is
+//!   fx = fy = W / (2 tan(fov/2)), cx = W/2, cy = H/2
+//! pixel (x, y), y = 0 is the TOP row, its centre at (x + 0.5, y + 0.5):
+//!   sx = (x + 0.5 - cx) / fx
+//!   sy = (cy - (y + 0.5)) / fy
 //!   dir = normalize(f + sx*r + sy*u), origin = eye
 //! ```
-//! The basis, `half_w` and `half_h` are computed once in f64 and rounded to the kernel's
-//! precision. `sx` and `sy` depend on one coordinate each, so they are tabulated per column and
-//! per row ([`RayTables`]); the direction is then evaluated in the kernel's precision, in the
-//! order written, with no fused multiply-add. [`RayTables::dir_x1`] and [`RayTables::dir_x8`]
+//! In OpenCV's axes (x right = r, y down = -u, z forward = f) that is `K^-1 (x + 0.5, y + 0.5,
+//! 1)`, `K = [[fx, 0, cx], [0, fy, cy], [0, 0, 1]]`: pixel x spans `[x, x + 1)` of K's image
+//! coordinates, as in Open3D's `create_rays_pinhole` (OpenCV's own convention puts pixel x's
+//! centre at `x`: add 0.5 to its cx and cy). The camera is [`Camera::world_to_camera`] and
+//! [`Camera::k`].
+//!
+//! Evaluation. The camera holds `half_w = W / (2 fx)` and `half_h = H / (2 fy)` (the screen's
+//! half-extents at distance 1) and the principal point, and evaluates, in the kernel's
+//! precision, in this order, with no fused multiply-add:
+//! ```text
+//!   sx = (2*(x + 0.5)/W - 2cx/W) * half_w        sy = (2cy/H - 2*(y + 0.5)/H) * half_h
+//! ```
+//! (the formula above, rearranged), `2cx/W` and `2cy/H` rounded from f64. A field of view
+//! sets `half_w = tan(fov/2)` and `half_h = half_w * H / W` directly, and its `2cx/W = 2cy/H =
+//! 1` exactly, so its screen tables and rays are bit for bit those of the centred formula
+//! `sx = (2*(x + 0.5)/W - 1) * tan(fov/2)` this camera had before intrinsics (tested below):
+//! every existing comparison, and the byte identity of wasm and native, stands. For
+//! intrinsics, `half_w` rounds `W / (2 fx)`, so an f64 ray lies within a few units of 1e-16
+//! (relative to `1 + |sx| + |sy|`) of the formula evaluated directly (tested at random K,
+//! principal points far off the centre and `fx != fy`).
+//!
+//! The basis, `half_w`, `half_h` and the principal point are computed once in f64 and rounded
+//! to the kernel's precision. `sx` and `sy` depend on one coordinate each, so they are
+//! tabulated per column and per row ([`RayTables`]); the direction is then evaluated in the
+//! kernel's precision, in the order written. [`RayTables::dir_x1`] and [`RayTables::dir_x8`]
 //! perform the same operations in the same order, so in f32 they give bit-identical rays.
 
 use crate::error::{Error, Result};
 use crate::real::{Real, V3, dot, v3};
-use crate::scene::{CameraSpec, Scene};
+use crate::scene::{CameraSpec, Intrinsics, Lens, Scene};
 use glam::DVec3;
 use wide::f32x8;
 
@@ -28,6 +50,51 @@ pub fn basis(eye: DVec3, look: DVec3, up: DVec3) -> Option<[DVec3; 3]> {
     let r = f.cross(up).try_normalize()?;
     let u = r.cross(f);
     Some([f, r, u])
+}
+
+/// The intrinsics of a 3x3 matrix `K = [[fx, s, cx], [0, fy, cy], [0, 0, 1]]` as calibrations
+/// give it (module comment: pixel x spans `[x, x + 1)`), or why not: a non-finite entry, a
+/// second or third row other than `[0, fy, cy]` and `[0, 0, 1]`, a skew `s` beyond
+/// `1e-9 fx` (the pinhole has none), a focal length that is not positive
+/// (`scene::validate::intrinsics`).
+pub fn intrinsics_of_matrix(k: &[[f64; 3]; 3]) -> std::result::Result<Intrinsics, String> {
+    if !k.iter().flatten().all(|x| x.is_finite()) {
+        return Err("K must be finite".into());
+    }
+    if k[1][0] != 0.0 || k[2] != [0.0, 0.0, 1.0] {
+        return Err(format!(
+            "K must be [[fx, 0, cx], [0, fy, cy], [0, 0, 1]], got {k:?}"
+        ));
+    }
+    let i = Intrinsics {
+        fx: k[0][0],
+        fy: k[1][1],
+        cx: k[0][2],
+        cy: k[1][2],
+    };
+    crate::scene::validate::intrinsics(&i).map_err(|m| format!("K: {m}"))?;
+    if k[0][1].abs() > 1e-9 * i.fx {
+        return Err(format!(
+            "K: skew {} is not 0 (lanecast's pinhole has none)",
+            k[0][1]
+        ));
+    }
+    Ok(i)
+}
+
+/// The camera spec of a rig: intrinsics `k` (3x3, [`intrinsics_of_matrix`]) and a 4x4
+/// world-to-camera matrix in OpenCV's axes (`scene::pose::from_world_to_camera`), or why not.
+/// [`Camera::look_at`] then checks it against an image size.
+pub fn spec_from_matrices(
+    k: &[[f64; 3]; 3],
+    world_to_camera: &[[f64; 4]; 4],
+) -> std::result::Result<CameraSpec, String> {
+    let k = intrinsics_of_matrix(k)?;
+    let spec = crate::scene::pose::from_world_to_camera(world_to_camera)?;
+    Ok(CameraSpec {
+        lens: Some(Lens::Pinhole(k)),
+        ..spec
+    })
 }
 
 /// A camera fixed to one image size.
@@ -45,10 +112,13 @@ pub struct Camera {
     pub width: u32,
     /// Image height in pixels.
     pub height: u32,
-    /// tan(fov / 2), fov horizontal: the screen half-width at distance 1.
+    /// W / (2 fx): the screen's half-width at distance 1 (tan(fov / 2) for a field of view).
     pub half_w: f64,
-    /// half_w * height / width: the screen half-height at distance 1.
+    /// H / (2 fy): the screen's half-height at distance 1 (half_w * H / W for a field of view).
     pub half_h: f64,
+    /// The intrinsics in pixels: as given, or those of the field of view (fx = W / (2 half_w),
+    /// fy = H / (2 half_h), cx = W/2, cy = H/2).
+    pub k: Intrinsics,
 }
 
 /// Horizontal field of view, in degrees, when neither the caller nor the scene gives one.
@@ -56,9 +126,8 @@ pub const DEFAULT_FOV: f64 = 60.0;
 
 impl Camera {
     /// The camera of `scene` for a `width` x `height` image, with horizontal field of view
-    /// `fov_deg` when given, else the scene's, else [`DEFAULT_FOV`]. Fails on a size outside
-    /// `1..=limits::MAX_SIDE` per side or past `limits::MAX_PIXELS`, or a field of view outside
-    /// (0, 180) degrees.
+    /// `fov_deg` when given (in place of the scene's lens), else the scene's lens (a field of
+    /// view or intrinsics), else [`DEFAULT_FOV`]. Fails as [`Camera::look_at`].
     pub fn for_scene(
         scene: &Scene,
         width: u32,
@@ -66,17 +135,18 @@ impl Camera {
         fov_deg: Option<f64>,
     ) -> Result<Camera> {
         let spec = CameraSpec {
-            fov_deg: fov_deg.or(scene.camera.fov_deg),
+            lens: fov_deg.map(Lens::Fov).or(scene.camera.lens),
             ..scene.camera
         };
         Camera::look_at(&spec, width, height)
     }
 
-    /// The camera `spec` describes (eye, look, up and its fov, else [`DEFAULT_FOV`]) for a
+    /// The camera `spec` describes (eye, look, up and its lens, else [`DEFAULT_FOV`]) for a
     /// `width` x `height` image: a view of a scene other than its own `camera` line. Fails,
     /// naming what is wrong, on a spec `scene::validate::camera` refuses (eye on look, up
-    /// parallel to the view, non-finite values), a size outside `1..=limits::MAX_SIDE` per side
-    /// or past `limits::MAX_PIXELS`, or a field of view outside (0, 180) degrees.
+    /// parallel to the view, non-finite values, a field of view outside (0, 180) degrees, a
+    /// focal length that is not positive), a size outside `1..=limits::MAX_SIDE` per side or
+    /// past `limits::MAX_PIXELS`, or intrinsics outside `limits::check_lens` for that size.
     pub fn look_at(spec: &CameraSpec, width: u32, height: u32) -> Result<Camera> {
         crate::limits::check_size(width as u64, height as u64)
             .map_err(|why| Error::usage(format!("image size {width}x{height}: {why}")))?;
@@ -87,19 +157,50 @@ impl Camera {
             ));
         }
         crate::scene::validate::camera(spec).map_err(|m| Error::usage(format!("camera: {m}")))?;
-        let fov = spec.fov_deg.unwrap_or(DEFAULT_FOV);
-        crate::scene::validate::fov(fov)
-            .map_err(|m| Error::usage(format!("field of view {fov}: {m}")))?;
-        Ok(Camera::new(spec, fov, width, height))
+        match spec.lens {
+            Some(Lens::Pinhole(k)) => {
+                crate::limits::check_lens(k.fx, k.fy, k.cx, k.cy, width, height)
+                    .map_err(|m| Error::usage(format!("camera: {m}")))?;
+                Ok(Camera::pinhole(spec, &k, width, height))
+            }
+            Some(Lens::Fov(fov)) => Ok(Camera::new(spec, fov, width, height)),
+            None => Ok(Camera::new(spec, DEFAULT_FOV, width, height)),
+        }
     }
 
     /// The camera of a validated spec (`scene::validate::camera` has accepted it) with a
-    /// horizontal field of view in degrees, 0 < fov < 180.
+    /// horizontal field of view in degrees, 0 < fov < 180 (the spec's own lens is not read).
     pub fn new(spec: &CameraSpec, fov_deg: f64, width: u32, height: u32) -> Camera {
-        let [f, r, u] = basis(spec.eye, spec.look, spec.up)
-            .expect("camera spec is validated before a Camera is made");
         let half_w = (fov_deg.to_radians() / 2.0).tan();
         let half_h = half_w * height as f64 / width as f64;
+        let (w, h) = (width as f64, height as f64);
+        let k = Intrinsics {
+            fx: w / (2.0 * half_w),
+            fy: h / (2.0 * half_h),
+            cx: w / 2.0,
+            cy: h / 2.0,
+        };
+        Camera::with_screen(spec, half_w, half_h, k, width, height)
+    }
+
+    /// The camera of a validated spec with intrinsics `k` that `limits::check_lens` accepts
+    /// for this size (the spec's own lens is not read).
+    pub fn pinhole(spec: &CameraSpec, k: &Intrinsics, width: u32, height: u32) -> Camera {
+        let half_w = width as f64 / (2.0 * k.fx);
+        let half_h = height as f64 / (2.0 * k.fy);
+        Camera::with_screen(spec, half_w, half_h, *k, width, height)
+    }
+
+    fn with_screen(
+        spec: &CameraSpec,
+        half_w: f64,
+        half_h: f64,
+        k: Intrinsics,
+        width: u32,
+        height: u32,
+    ) -> Camera {
+        let [f, r, u] = basis(spec.eye, spec.look, spec.up)
+            .expect("camera spec is validated before a Camera is made");
         Camera {
             eye: spec.eye,
             f,
@@ -109,21 +210,71 @@ impl Camera {
             height,
             half_w,
             half_h,
+            k,
         }
     }
 
-    /// Screen coordinate of column `x`: sx = (2*(x + 0.5)/W - 1) * half_w, evaluated in `T`.
+    /// The principal point in units of the half image, `(2cx/W, 2cy/H)`: (1, 1) exactly for a
+    /// field of view.
+    #[inline]
+    pub fn principal(&self) -> (f64, f64) {
+        (
+            2.0 * self.k.cx / self.width as f64,
+            2.0 * self.k.cy / self.height as f64,
+        )
+    }
+
+    /// The image's edges in screen coordinates: `[left, right, bottom, top]`, `sx` of pixel
+    /// coordinates 0 and W, `sy` of H and 0 (`[-half_w, half_w, -half_h, half_h]` exactly for
+    /// a field of view). Every pixel centre's exact `(sx, sy)` lies inside, half a pixel in.
+    pub fn screen(&self) -> [f64; 4] {
+        let (px, py) = self.principal();
+        [
+            -px * self.half_w,
+            (2.0 - px) * self.half_w,
+            (py - 2.0) * self.half_h,
+            py * self.half_h,
+        ]
+    }
+
+    /// The largest `|sx|` and `|sy|` over the image ([`Camera::screen`]).
+    pub fn screen_reach(&self) -> (f64, f64) {
+        let [l, r, b, t] = self.screen();
+        (l.abs().max(r.abs()), b.abs().max(t.abs()))
+    }
+
+    /// Screen coordinate of column `x`: sx = (2*(x + 0.5)/W - 2cx/W) * half_w, evaluated in `T`.
     #[inline]
     pub fn sx<T: Real>(&self, x: u32) -> T {
         let w = T::from_f64(self.width as f64);
-        (T::TWO * (T::from_f64(x as f64) + T::HALF) / w - T::ONE) * T::from_f64(self.half_w)
+        let px = T::from_f64(self.principal().0);
+        (T::TWO * (T::from_f64(x as f64) + T::HALF) / w - px) * T::from_f64(self.half_w)
     }
 
-    /// Screen coordinate of row `y` (0 = top): sy = (1 - 2*(y + 0.5)/H) * half_h, in `T`.
+    /// Screen coordinate of row `y` (0 = top): sy = (2cy/H - 2*(y + 0.5)/H) * half_h, in `T`.
     #[inline]
     pub fn sy<T: Real>(&self, y: u32) -> T {
         let h = T::from_f64(self.height as f64);
-        (T::ONE - T::TWO * (T::from_f64(y as f64) + T::HALF) / h) * T::from_f64(self.half_h)
+        let py = T::from_f64(self.principal().1);
+        (py - T::TWO * (T::from_f64(y as f64) + T::HALF) / h) * T::from_f64(self.half_h)
+    }
+
+    /// The 3x3 intrinsic matrix `[[fx, 0, cx], [0, fy, cy], [0, 0, 1]]` (module comment).
+    pub fn k_matrix(&self) -> [[f64; 3]; 3] {
+        let k = self.k;
+        [[k.fx, 0.0, k.cx], [0.0, k.fy, k.cy], [0.0, 0.0, 1.0]]
+    }
+
+    /// The 4x4 world-to-camera matrix in OpenCV's axes (x right, y down, z forward), row-major:
+    /// rotation rows `r`, `-u`, `f`, translation `-R eye`, last row `0 0 0 1`.
+    pub fn world_to_camera(&self) -> [[f64; 4]; 4] {
+        let rows = [self.r, -self.u, self.f];
+        let mut m = [[0.0; 4]; 4];
+        for (i, a) in rows.iter().enumerate() {
+            m[i] = [a.x, a.y, a.z, -a.dot(self.eye)];
+        }
+        m[3] = [0.0, 0.0, 0.0, 1.0];
+        m
     }
 
     /// A bound, in radians, on the angle between any pixel's f32 ray direction and its f64 one
@@ -231,7 +382,7 @@ mod tests {
             eye: DVec3::new(0.0, 0.0, 5.0),
             look: DVec3::ZERO,
             up: DVec3::Y,
-            fov_deg: None,
+            lens: None,
         }
     }
 
@@ -293,7 +444,8 @@ mod tests {
 
     /// Every pixel's f32 ray direction lies within [`Camera::direction_error`] of its f64 one,
     /// and its length within 3.5u of 1, for cameras turned off the axes with narrow to wide
-    /// fields of view; and the bound is not loose by more than a few times.
+    /// fields of view, and pinholes of those focal lengths with `fy != fx` and the principal
+    /// point off the image; and the bound is not loose by more than a few times.
     #[test]
     fn f32_directions_stay_within_the_stated_error() {
         let u = crate::real::U32;
@@ -316,33 +468,44 @@ mod tests {
                 eye,
                 look,
                 up,
-                fov_deg: None,
+                lens: None,
             };
             for (fov, w, h) in [
-                (20.0, 160, 90),
+                (20.0f64, 160, 90),
                 (60.0, 211, 117),
                 (90.0, 128, 128),
                 (150.0, 97, 61),
             ] {
-                let cam = Camera::new(&spec, fov, w, h);
-                let bound = cam.direction_error();
-                let (t32, t64) = (cam.tables::<f32>(1, 1), cam.tables::<f64>(1, 1));
-                for y in 0..h as usize {
-                    for x in 0..w as usize {
-                        let (a, b) = (t32.dir_x1(x, y).map(f64::from), t64.dir_x1(x, y));
-                        let len = dot(a, a).sqrt();
-                        assert!((len - 1.0).abs() <= 3.5 * u, "length {len} at ({x}, {y})");
-                        let cross = [
-                            a[1] * b[2] - a[2] * b[1],
-                            a[2] * b[0] - a[0] * b[2],
-                            a[0] * b[1] - a[1] * b[0],
-                        ];
-                        let angle = dot(cross, cross).sqrt() / len;
-                        assert!(
-                            angle <= bound,
-                            "{angle:e} > {bound:e} at ({x}, {y}), fov {fov}"
-                        );
-                        worst_ratio = worst_ratio.max(angle / bound);
+                let fx = w as f64 / (2.0 * (fov.to_radians() / 2.0).tan());
+                let off = Intrinsics {
+                    fx,
+                    fy: 1.3 * fx,
+                    cx: 0.2 * w as f64 - 3.0,
+                    cy: 1.7 * h as f64,
+                };
+                for cam in [
+                    Camera::new(&spec, fov, w, h),
+                    Camera::pinhole(&spec, &off, w, h),
+                ] {
+                    let bound = cam.direction_error();
+                    let (t32, t64) = (cam.tables::<f32>(1, 1), cam.tables::<f64>(1, 1));
+                    for y in 0..h as usize {
+                        for x in 0..w as usize {
+                            let (a, b) = (t32.dir_x1(x, y).map(f64::from), t64.dir_x1(x, y));
+                            let len = dot(a, a).sqrt();
+                            assert!((len - 1.0).abs() <= 3.5 * u, "length {len} at ({x}, {y})");
+                            let cross = [
+                                a[1] * b[2] - a[2] * b[1],
+                                a[2] * b[0] - a[0] * b[2],
+                                a[0] * b[1] - a[1] * b[0],
+                            ];
+                            let angle = dot(cross, cross).sqrt() / len;
+                            assert!(
+                                angle <= bound,
+                                "{angle:e} > {bound:e} at ({x}, {y}), fov {fov}"
+                            );
+                            worst_ratio = worst_ratio.max(angle / bound);
+                        }
                     }
                 }
             }
@@ -353,5 +516,173 @@ mod tests {
             "the bound is {:.1} times the worst angle",
             1.0 / worst_ratio
         );
+    }
+
+    /// Today's fov cameras are the centred special case bit for bit: every screen table entry,
+    /// in f32 and f64, equals the formula before intrinsics, `sx = (2*(x + 0.5)/W - 1) *
+    /// tan(fov/2)`, `sy = (1 - 2*(y + 0.5)/H) * half_w * H / W`, evaluated in the table's
+    /// precision; and the camera's K is that of the field of view.
+    #[test]
+    fn fov_cameras_keep_the_centred_formula_bit_for_bit() {
+        fn old<T: Real>(cam: &Camera, fov: f64) -> (Vec<T>, Vec<T>) {
+            let half_w = (fov.to_radians() / 2.0).tan();
+            let half_h = half_w * cam.height as f64 / cam.width as f64;
+            let (w, h) = (
+                T::from_f64(cam.width as f64),
+                T::from_f64(cam.height as f64),
+            );
+            let sx = (0..cam.width)
+                .map(|x| {
+                    (T::TWO * (T::from_f64(x as f64) + T::HALF) / w - T::ONE) * T::from_f64(half_w)
+                })
+                .collect();
+            let sy = (0..cam.height)
+                .map(|y| {
+                    (T::ONE - T::TWO * (T::from_f64(y as f64) + T::HALF) / h) * T::from_f64(half_h)
+                })
+                .collect();
+            (sx, sy)
+        }
+        let mut rng = crate::test_rng::Rng(38);
+        for _ in 0..300 {
+            let fov = rng.log(-4.0, 179.9f64.log10());
+            let w = rng.log(0.0, 65536f64.log10()).round().max(1.0) as u32;
+            let h = rng.log(0.0, 4096f64.log10()).round().max(1.0) as u32;
+            let cam = Camera::new(&spec(), fov, w, h);
+            assert_eq!(cam.principal(), (1.0, 1.0));
+            let (t32, t64) = (cam.tables::<f32>(1, 1), cam.tables::<f64>(1, 1));
+            let (sx32, sy32) = old::<f32>(&cam, fov);
+            let (sx64, sy64) = old::<f64>(&cam, fov);
+            let bits32 = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            let bits64 = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits32(&t32.sx), bits32(&sx32), "fov {fov}, {w}x{h}");
+            assert_eq!(bits32(&t32.sy), bits32(&sy32), "fov {fov}, {w}x{h}");
+            assert_eq!(bits64(&t64.sx), bits64(&sx64), "fov {fov}, {w}x{h}");
+            assert_eq!(bits64(&t64.sy), bits64(&sy64), "fov {fov}, {w}x{h}");
+            let hw = (fov.to_radians() / 2.0).tan();
+            assert_eq!(cam.screen(), [-hw, hw, -cam.half_h, cam.half_h]);
+            assert_eq!(cam.k.cx, w as f64 / 2.0);
+            assert!((cam.k.fx / (w as f64 / (2.0 * hw)) - 1.0).abs() < 1e-15);
+            assert!((cam.k.fy / cam.k.fx - 1.0).abs() < 1e-14);
+        }
+    }
+
+    /// A pinhole's f64 rays equal the reference formula evaluated directly,
+    /// `normalize(f + (x + 0.5 - cx)/fx r + (cy - y - 0.5)/fy u)`, at random K: focal lengths
+    /// 1e-3 to 1e3 times the size, `fy` 0.1 to 10 times `fx`, principal points up to 50 image
+    /// sizes off the centre; within 8 units of 1e-16, relative to the terms summed.
+    #[test]
+    fn pinhole_rays_equal_the_reference_formula() {
+        let mut rng = crate::test_rng::Rng(7);
+        let mut worst: f64 = 0.0;
+        for _ in 0..300 {
+            let w = rng.log(0.0, 3.0).round().max(1.0) as u32;
+            let h = rng.log(0.0, 3.0).round().max(1.0) as u32;
+            let fx = w as f64 * rng.log(-3.0, 3.0);
+            let far = if rng.unit() < 0.3 { 50.0 } else { 1.0 };
+            let k = Intrinsics {
+                fx,
+                fy: fx * rng.log(-1.0, 1.0),
+                cx: w as f64 * (0.5 + rng.range(-far, far)),
+                cy: h as f64 * (0.5 + rng.range(-far, far)),
+            };
+            let spec = CameraSpec {
+                eye: rng.point(10.0),
+                look: rng.point(10.0),
+                up: rng.direction(),
+                lens: Some(Lens::Pinhole(k)),
+            };
+            let Ok(cam) = Camera::look_at(&spec, w, h) else {
+                continue;
+            };
+            let t = cam.tables::<f64>(1, 1);
+            for _ in 0..50 {
+                let (x, y) = (rng.below(w), rng.below(h));
+                let sx = (x as f64 + 0.5 - k.cx) / k.fx;
+                let sy = (k.cy - (y as f64 + 0.5)) / k.fy;
+                let q = cam.f + sx * cam.r + sy * cam.u;
+                let d = t.dir_x1(x as usize, y as usize);
+                let err = (DVec3::from_array(d) - q.normalize()).length();
+                // the tables' rounding: a few u of each term, over |q|
+                let scale = (1.0
+                    + sx.abs()
+                    + sy.abs()
+                    + (x as f64 + 0.5).abs() / k.fx
+                    + k.cx.abs() / k.fx
+                    + (y as f64 + 0.5).abs() / k.fy
+                    + k.cy.abs() / k.fy)
+                    / q.length();
+                let rel = err / (scale * f64::EPSILON / 2.0);
+                assert!(rel <= 8.0, "{rel} u at ({x}, {y}) of {w}x{h}, {k:?}");
+                worst = worst.max(rel);
+            }
+        }
+        eprintln!("largest error / (u * scale): {worst:.2}");
+    }
+
+    /// K and the world-to-camera matrix project a point on pixel (x, y)'s ray back to
+    /// `(x + 0.5, y + 0.5)` (OpenCV: `(u, v, 1) z = K (R X + t)`), the matrix is a rotation
+    /// (OpenCV axes: x right, y down, z forward) and maps the eye to the origin.
+    #[test]
+    fn k_and_world_to_camera_project_a_pixel_back_onto_it() {
+        let mut rng = crate::test_rng::Rng(11);
+        for i in 0..200 {
+            let (w, h) = (rng.below(900) + 1, rng.below(700) + 1);
+            let lens = if i % 2 == 0 {
+                Lens::Fov(rng.range(1.0, 170.0))
+            } else {
+                let fx = w as f64 * rng.log(-1.0, 1.0);
+                Lens::Pinhole(Intrinsics {
+                    fx,
+                    fy: fx * rng.log(-0.5, 0.5),
+                    cx: w as f64 * rng.range(-1.0, 2.0),
+                    cy: h as f64 * rng.range(-1.0, 2.0),
+                })
+            };
+            let spec = CameraSpec {
+                eye: rng.point(100.0),
+                look: rng.point(100.0),
+                up: rng.direction(),
+                lens: Some(lens),
+            };
+            let Ok(cam) = Camera::look_at(&spec, w, h) else {
+                continue;
+            };
+            let (k, m) = (cam.k_matrix(), cam.world_to_camera());
+            let t = cam.tables::<f64>(1, 1);
+            let apply = |p: DVec3| {
+                let row = |i: usize| m[i][0] * p.x + m[i][1] * p.y + m[i][2] * p.z + m[i][3];
+                DVec3::new(row(0), row(1), row(2))
+            };
+            assert!(apply(cam.eye).length() < 1e-12 * (1.0 + cam.eye.length()));
+            assert_eq!(m[3], [0.0, 0.0, 0.0, 1.0]);
+            let (x, y) = (rng.below(w), rng.below(h));
+            let p = cam.eye + DVec3::from_array(t.dir_x1(x as usize, y as usize)) * 7.0;
+            let c = apply(p);
+            let u = (k[0][0] * c.x + k[0][1] * c.y + k[0][2] * c.z) / c.z;
+            let v = (k[1][0] * c.x + k[1][1] * c.y + k[1][2] * c.z) / c.z;
+            let tol = 1e-9 * (1.0 + (u - k[0][2]).abs() + (v - k[1][2]).abs());
+            assert!(
+                (u - (x as f64 + 0.5)).abs() < tol && (v - (y as f64 + 0.5)).abs() < tol,
+                "({u}, {v}) for pixel ({x}, {y}) of {w}x{h}, {lens:?}"
+            );
+        }
+    }
+
+    /// Intrinsics `look_at` refuses for the image size, with the reason.
+    #[test]
+    fn pinholes_outside_the_limits_are_refused() {
+        let k = |fx: f64, fy: f64, cx: f64, cy: f64| CameraSpec {
+            lens: Some(Lens::Pinhole(Intrinsics { fx, fy, cx, cy })),
+            ..spec()
+        };
+        let e = |s: CameraSpec| Camera::look_at(&s, 640, 480).unwrap_err().to_string();
+        assert!(e(k(0.0, 500.0, 320.0, 240.0)).contains("fx = 0 pixels"));
+        assert!(e(k(500.0, -1.0, 320.0, 240.0)).contains("fy = -1 pixels"));
+        assert!(e(k(500.0, 500.0, f64::NAN, 240.0)).contains("cx"));
+        assert!(e(k(1e-8, 500.0, 320.0, 240.0)).contains("W / fx"));
+        assert!(e(k(500.0, 1e13, 320.0, 240.0)).contains("H / fy"));
+        assert!(e(k(500.0, 500.0, 320.0 + 640e3 + 1.0, 240.0)).contains("principal point cx"));
+        assert!(Camera::look_at(&k(500.0, 700.0, 319.5, -2000.0), 640, 480).is_ok());
     }
 }

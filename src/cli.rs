@@ -108,6 +108,8 @@ pub struct RenderSettings {
     pub views: Option<views::ViewSource>,
     /// `--skip-existing`.
     pub skip_existing: bool,
+    /// `--save-views FILE` (with `--orbit`).
+    pub save_views: Option<PathBuf>,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -235,6 +237,7 @@ fn parse_raw(raw: &[OsString]) -> Result<Command> {
                 stdout_format,
                 views: source,
                 skip_existing: r.skip_existing,
+                save_views: r.save_views,
             };
             check_render(&settings, &typed, &flag)?;
             views::check(&settings, &typed)?;

@@ -126,11 +126,11 @@ pub(crate) mod words;
 pub mod world;
 
 pub use accel::Accel;
-pub use camera::{Camera, DEFAULT_FOV};
+pub use camera::{Camera, DEFAULT_FOV, intrinsics_of_matrix, spec_from_matrices};
 pub use error::{Error, Result};
 pub use frame::Frame;
 pub use render::{Kernel, Method, Options, Rendered, Renderer, Views};
-pub use scene::{CameraSpec, Scene, load_scene, parse_scene};
+pub use scene::{CameraSpec, Intrinsics, Lens, Scene, load_scene, parse_scene};
 pub use shade::{ColorMode, Variation, shade};
 
 /// Runs the lanecast command line (feature `cli`) on a full argument list (program name

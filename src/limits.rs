@@ -21,6 +21,50 @@ pub(crate) fn check_size(width: u64, height: u64) -> Result<(), String> {
     Ok(())
 }
 
+/// Narrowest and widest screen a pinhole's intrinsics may give, at distance 1: `W / fx` and
+/// `H / fy` (twice the tangent of the half-angle each axis spans, for a centred principal
+/// point) lie in `[MIN_SCREEN, MAX_SCREEN]`. Every screen coordinate and its f32 rounding then
+/// stays a normal number with room (a field of view within (0, 180) degrees spans 0 to ~1e16).
+pub const MIN_SCREEN: f64 = 1e-9;
+/// See [`MIN_SCREEN`].
+pub const MAX_SCREEN: f64 = 1e9;
+/// Farthest a pinhole's principal point may lie from the image's centre, in image widths
+/// (`|cx - W/2| / W`) and heights (`|cy - H/2| / H`): lens shifts and crops stay well inside;
+/// the projections' rounding grows with it (`world::raster`'s margin follows it).
+pub const MAX_PRINCIPAL_OFFSET: f64 = 1e3;
+
+/// The size-dependent rules for pinhole intrinsics (the rest: `scene::validate::intrinsics`),
+/// in one place: the reason, when refused.
+pub(crate) fn check_lens(
+    fx: f64,
+    fy: f64,
+    cx: f64,
+    cy: f64,
+    width: u32,
+    height: u32,
+) -> Result<(), String> {
+    let (w, h) = (width as f64, height as f64);
+    for (name, side, f) in [("W / fx", w, fx), ("H / fy", h, fy)] {
+        let screen = side / f;
+        if !(MIN_SCREEN..=MAX_SCREEN).contains(&screen) {
+            return Err(format!(
+                "{name} = {screen:e} for a {width}x{height} image: the screen at distance 1 must \
+                 span {MIN_SCREEN:e} to {MAX_SCREEN:e}"
+            ));
+        }
+    }
+    for (name, side, c) in [("cx", w, cx), ("cy", h, cy)] {
+        let within = (c - side / 2.0).abs() <= MAX_PRINCIPAL_OFFSET * side;
+        if !within {
+            return Err(format!(
+                "principal point {name} = {c} is more than {MAX_PRINCIPAL_OFFSET:e} image sizes \
+                 from the centre of a {width}x{height} image"
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Most worker threads (`--threads`): each costs a stack and a start; far more than any machine
 /// lanecast targets has cores, and far below what an operating system refuses to start.
 pub const MAX_THREADS: usize = 1024;

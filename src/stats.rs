@@ -40,6 +40,68 @@ pub struct Stats {
     pub redecided: Option<usize>,
     /// Per-view times of a many-view run (`--views`, `--orbit`); `None` for one view.
     pub views: Option<ViewTimes>,
+    /// Every view's camera and outputs, in order (one for a one-view run): `views[i]` of the
+    /// record.
+    pub poses: Vec<ViewRecord>,
+}
+
+/// One view's camera and output names, as the record keeps them (`views[i]`): the camera as
+/// used (eye, look, up and its lens, a default field of view filled in), its 3x3 K and 4x4
+/// world-to-camera matrix (OpenCV axes: `camera::Camera::k_matrix`, `world_to_camera`).
+#[derive(Debug, Clone)]
+pub struct ViewRecord {
+    /// Eye, look, up and lens.
+    pub spec: crate::scene::CameraSpec,
+    /// The camera made of it for the run's size.
+    pub camera: crate::camera::Camera,
+    /// (what, path) of each of its outputs, as `Stats::outputs`.
+    pub outputs: Vec<(&'static str, String)>,
+    /// Index into `ViewTimes::each` when it rendered in a many-view run; `None` when
+    /// `--skip-existing` left it out, or in a one-view run.
+    pub rendered: Option<usize>,
+    /// Left out by `--skip-existing`.
+    pub skipped: bool,
+}
+
+impl ViewRecord {
+    /// The view's JSON object: `camera` (eye, look, up, and `fov` or `K` as fx, fy, cx, cy),
+    /// `K`, `world_to_camera`, `outputs`, `skipped`, and its times when it rendered.
+    fn json(&self, times: Option<&ViewTimes>) -> serde_json::Value {
+        use crate::scene::Lens;
+        let v = |v: glam::DVec3| serde_json::json!([v.x, v.y, v.z]);
+        let mut camera = serde_json::json!({
+            "eye": v(self.spec.eye), "look": v(self.spec.look), "up": v(self.spec.up),
+        });
+        match self.spec.lens {
+            Some(Lens::Fov(f)) => camera["fov"] = f.into(),
+            Some(Lens::Pinhole(k)) => {
+                camera["K"] = serde_json::json!({"fx": k.fx, "fy": k.fy, "cx": k.cx, "cy": k.cy})
+            }
+            None => {}
+        }
+        let outputs: serde_json::Map<String, serde_json::Value> = (self.outputs.iter())
+            .map(|(what, path)| (what.to_string(), path.clone().into()))
+            .collect();
+        let mut record = serde_json::json!({
+            "camera": camera,
+            "K": self.camera.k_matrix(),
+            "world_to_camera": self.camera.world_to_camera(),
+            "outputs": outputs,
+            "skipped": self.skipped,
+        });
+        if let Some(t) = self.rendered.and_then(|i| times?.each.get(i)) {
+            for (key, value) in [
+                ("setup_s", t.setup_s.into()),
+                ("render_s", t.render_s.into()),
+                ("output_s", t.output_s.into()),
+                ("left_out", t.left_out.into()),
+                ("renders", t.renders.into()),
+            ] {
+                record[key] = value;
+            }
+        }
+        record
+    }
 }
 
 /// The times of a many-view run's views, in seconds.
@@ -256,19 +318,16 @@ impl Stats {
         });
         let mut record = record;
         if let Some(v) = &self.views {
-            let each: Vec<_> = (v.each.iter())
-                .map(|t| {
-                    serde_json::json!({"setup_s": t.setup_s, "render_s": t.render_s,
-                        "output_s": t.output_s, "left_out": t.left_out, "renders": t.renders})
-                })
-                .collect();
-            record["views"] = serde_json::json!({
+            record["views_summary"] = serde_json::json!({
                 "rendered": v.each.len(),
                 "skipped": v.skipped,
                 "median_view_s": v.median_cost(),
-                "each": each,
             });
         }
+        let views: Vec<_> = (self.poses.iter())
+            .map(|p| p.json(self.views.as_ref()))
+            .collect();
+        record["views"] = views.into();
         let mut out = serde_json::to_string_pretty(&record).expect("a JSON value always prints");
         out.push('\n');
         out
@@ -326,6 +385,7 @@ mod tests {
             renders: vec![0.004, 0.002, 0.003, 0.010],
             redecided: None,
             views: None,
+            poses: Vec::new(),
         }
     }
 

@@ -117,7 +117,7 @@ fn tiles_equal_brute_force_at_the_widest_fields_of_view() {
         shapes.extend(random_triangles(&mut rng, 60));
         shapes.extend(random_quads(&mut rng, 20));
         let mut cam = random_camera(&mut rng);
-        cam.fov_deg = Some(fov);
+        cam.lens = Some(lanecast::Lens::Fov(fov));
         let scene = build_scene("wide.sc", cam, &shapes);
         frames_equal(&format!("wide {round}, fov {fov}"), &scene, 8192, 6);
     }

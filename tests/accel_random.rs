@@ -109,7 +109,7 @@ fn random_camera(rng: &mut Rng, c: DVec3, size: f64) -> CameraSpec {
         eye,
         look,
         up,
-        fov_deg: Some(fov),
+        lens: Some(lanecast::Lens::Fov(fov)),
     }
 }
 
@@ -125,7 +125,7 @@ fn with_camera(scene: &Scene, spec: CameraSpec) -> Option<Scene> {
 /// The first difference between `none` and another acceleration for any of `kinds` on `scene`
 /// at `w` x `h`, described; `None` when every frame is equal bit for bit.
 fn first_difference(scene: &Scene, (w, h): (u32, u32), kinds: &[Kind]) -> Option<String> {
-    let fov = scene.camera.fov_deg.expect("a random camera has its fov");
+    let fov = scene.camera.fov_deg().expect("a random camera has its fov");
     let camera = Camera::new(&scene.camera, fov, w, h);
     for &kind in kinds {
         let render = |accel| {
@@ -235,7 +235,7 @@ fn survey(
                 k.eye.to_array(),
                 k.look.to_array(),
                 k.up.to_array(),
-                k.fov_deg.unwrap_or(f64::NAN)
+                k.fov_deg().unwrap_or(f64::NAN)
             ));
         }
     }
@@ -288,7 +288,7 @@ fn regression(
         eye: DVec3::from(eye),
         look: DVec3::from(look),
         up: DVec3::from(up),
-        fov_deg: Some(fov),
+        lens: Some(lanecast::Lens::Fov(fov)),
     };
     let scene = with_camera(&scaled(&repo_scene(name), scale), spec)
         .unwrap_or_else(|| panic!("{name}: lanecast refuses the camera"));

@@ -60,7 +60,7 @@ fn parses_every_statement() {
     assert_eq!(s.camera.eye, d(1., 2., 3.));
     assert_eq!(s.camera.look, d(-4., 5.5, 6.));
     assert_eq!(s.camera.up, d(0., 0., 1.));
-    assert_eq!(s.camera.fov_deg, Some(45.0));
+    assert_eq!(s.camera.fov_deg(), Some(45.0));
     assert_eq!(
         s.shapes.iter().collect::<Vec<_>>(),
         vec![
@@ -71,7 +71,7 @@ fn parses_every_statement() {
     );
     assert_eq!(s.shapes.lines().collect::<Vec<_>>(), vec![2, 3, 4]);
     assert_eq!(s.counts(), (1, 1, 1));
-    assert_eq!(ok(CAM).camera.fov_deg, None);
+    assert_eq!(ok(CAM).camera.fov_deg(), None);
 }
 
 #[test]
@@ -280,7 +280,7 @@ fn camera_fov() {
     }
     for fov in ["1e-3", "90", "179.999"] {
         let s = ok(&format!("camera eye 0 0 5 look 0 0 0 up 0 1 0 fov {fov}"));
-        assert_eq!(s.camera.fov_deg, Some(fov.parse().unwrap()));
+        assert_eq!(s.camera.fov_deg(), Some(fov.parse().unwrap()));
     }
 }
 

@@ -210,7 +210,7 @@ fn readme_boundary_bands_are_their_sources() {
         eye: glam::DVec3::new(0.0, 0.0, 5.0),
         look: glam::DVec3::ZERO,
         up: glam::DVec3::Y,
-        fov_deg: Some(60.0),
+        lens: Some(lanecast::Lens::Fov(60.0)),
     };
     let a = Camera::look_at(&spec, 640, 480).unwrap().direction_error();
     let (edge, auto) = (format!("{EDGE_BAND:.1e}"), format!("{:.1e}", 12.0 * u + a));

@@ -146,7 +146,7 @@ fn normals_face_the_eye_and_match_the_exact_hit_at_every_scale() {
         cam.eye = cam.eye * scale + offset;
         cam.look = cam.look * scale + offset;
         let scene = build_scene("surface.sc", cam, &moved);
-        let camera = Camera::new(&scene.camera, cam.fov_deg.unwrap(), 97, 61);
+        let camera = Camera::new(&scene.camera, cam.fov_deg().unwrap(), 97, 61);
         let (_, hits) = checked_hits(&scene, &camera, &format!("case {case}"));
         for Hit {
             pixel: i,

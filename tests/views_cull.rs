@@ -69,7 +69,7 @@ fn paths(scene: &Scene, rng: &mut Rng) -> Vec<Vec<CameraSpec>> {
             eye: centre + rng.direction() * radius * rng.range(0.2, 4.0),
             look: centre + rng.direction() * radius * rng.range(0.0, 0.5),
             up: rng.direction(),
-            fov_deg: Some(rng.range(10.0, 100.0)),
+            lens: Some(lanecast::Lens::Fov(rng.range(10.0, 100.0))),
         })
         .collect();
     let from = centre + rng.direction() * radius * 3.0;
@@ -78,7 +78,7 @@ fn paths(scene: &Scene, rng: &mut Rng) -> Vec<Vec<CameraSpec>> {
             eye: from + (centre - from) * (k as f64 / 8.0),
             look: centre,
             up: DVec3::Y,
-            fov_deg: Some(60.0),
+            lens: Some(lanecast::Lens::Fov(60.0)),
         })
         .collect();
     vec![slow, jumps, dolly]

@@ -25,7 +25,7 @@ fuzz_target!(|data: &[u8]| {
     if scene.shapes.len() > 64 || range::f32_range(&scene).is_err() {
         return;
     }
-    let fov = scene.camera.fov_deg.unwrap_or(60.0);
+    let fov = scene.camera.fov_deg().unwrap_or(60.0);
     let camera = Camera::new(&scene.camera, fov, SIZE, SIZE);
     let n = (SIZE * SIZE) as usize;
     for kernel in [Kernel::Packet, Kernel::ScalarF64] {

@@ -77,7 +77,7 @@ impl LabScene {
                 }
             }
         }
-        let fov = scene.camera.fov_deg.unwrap_or(60.0);
+        let fov = scene.camera.fov_deg().unwrap_or(60.0);
         let camera = Camera::new(&scene.camera, fov, size.0, size.1);
         let name = path
             .file_stem()

@@ -253,7 +253,7 @@ fn world_space_f32_fails_far_from_the_origin() {
 fn packet_renders_equal_scalar_renders_with_border_lanes() {
     for n in ["cube", "eye_inside", "behind", "grid"] {
         let mut s = stress(n);
-        let fov = s.scene.camera.fov_deg.unwrap_or(60.0);
+        let fov = s.scene.camera.fov_deg().unwrap_or(60.0);
         s.camera = Camera::new(&s.scene.camera, fov, 37, 11);
         fn same<S: lanecast::experimental::render::kits::SphereFamily, P: PolyFamily>(
             s: &LabScene,

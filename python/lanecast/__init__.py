@@ -16,10 +16,10 @@ The engine is the lanecast Rust library (the command line's): every view is bit-
 import copyreg as _copyreg
 
 from ._errors import SceneError
-from ._lanecast import (INTRINSICS_TOL, MAX_SIDE, MAX_THREADS, Camera, Render, Scene,
+from ._lanecast import (MAX_SIDE, MAX_THREADS, RIGID_TOL, Camera, Render, Scene,
                         __version__, shade)
 
-__all__ = ["Camera", "Render", "Scene", "SceneError", "shade", "INTRINSICS_TOL", "MAX_SIDE",
+__all__ = ["Camera", "Render", "Scene", "SceneError", "shade", "RIGID_TOL", "MAX_SIDE",
            "MAX_THREADS", "__version__"]
 
 

@@ -4,19 +4,21 @@
 use crate::args;
 use crate::arrays::{py_shape, vec3};
 use crate::errors::value_error;
-use lanecast::{CameraSpec, Scene};
-use numpy::ndarray::Array3;
-use numpy::{IntoPyArray, PyArray3, PyReadonlyArray3, PyUntypedArrayMethods};
+use lanecast::{CameraSpec, Lens, Scene};
+use numpy::ndarray::{Array2, Array3};
+use numpy::{IntoPyArray, PyArray2, PyArray3, PyReadonlyArray3, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyList;
 
-/// Tolerance of `Camera.from_intrinsics`, relative: the principal point's distance from the
-/// image centre (to the image's size), fx against fy and the skew (to fx), and how far the
-/// extrinsic's rotation is from orthonormal (entries of R Rᵀ - I).
-pub(crate) const INTRINSICS_TOL: f64 = 1e-6;
-
-/// What a pickled camera holds: eye, look, up, fov, size.
-type CameraState = ([f64; 3], [f64; 3], [f64; 3], f64, Option<(u32, u32)>);
+/// What a pickled camera holds: eye, look, up, fov, size, intrinsics (fx, fy, cx, cy) or None.
+type CameraState = (
+    [f64; 3],
+    [f64; 3],
+    [f64; 3],
+    f64,
+    Option<(u32, u32)>,
+    Option<(f64, f64, f64, f64)>,
+);
 
 /// A pinhole camera: eye, look, up and horizontal field of view in degrees, as a scene's
 /// `camera` line (README "Camera"); optionally tied to an image size (`from_intrinsics`).
@@ -58,83 +60,17 @@ impl PyCamera {
         Ok(cam)
     }
 
+    /// The camera of K (3x3) and a world-to-camera extrinsic (4x4, OpenCV axes) for a
+    /// `width` x `height` image: the library's `camera::spec_from_matrices`, then its checks
+    /// for that size (`Camera::look_at`).
     fn from_matrices(
         k: [[f64; 3]; 3],
         e: [[f64; 4]; 4],
         width: u32,
         height: u32,
     ) -> Result<PyCamera, String> {
-        let tol = INTRINSICS_TOL;
-        let finite = k
-            .iter()
-            .flatten()
-            .chain(e.iter().flatten())
-            .all(|x| x.is_finite());
-        if !finite {
-            return Err("K and extrinsic must be finite".into());
-        }
-        let (fx, fy, cx, cy) = (k[0][0], k[1][1], k[0][2], k[1][2]);
-        if k[1][0] != 0.0 || k[2] != [0.0, 0.0, 1.0] {
-            return Err(format!(
-                "K must be [[fx, s, cx], [0, fy, cy], [0, 0, 1]], got {k:?}"
-            ));
-        }
-        if fx <= 0.0 || fy <= 0.0 {
-            return Err(format!("K: fx and fy must be positive, got {fx} and {fy}"));
-        }
-        if (fx - fy).abs() > tol * fx {
-            return Err(format!(
-                "K: fx = {fx} and fy = {fy} differ; lanecast's pixels are square (tolerance \
-                 {tol:e} relative)"
-            ));
-        }
-        if k[0][1].abs() > tol * fx {
-            return Err(format!("K: skew {} is not 0", k[0][1]));
-        }
-        let (w, h) = (width as f64, height as f64);
-        if (cx - w / 2.0).abs() > tol * w || (cy - h / 2.0).abs() > tol * h {
-            return Err(format!(
-                "K: principal point ({cx}, {cy}) is not the image centre ({}, {}) of a \
-                 {width}x{height} image; lanecast's camera has its principal point at the \
-                 centre (pixel x's centre is x + 0.5, as in Open3D's create_rays_pinhole; \
-                 tolerance {tol:e} of the size)",
-                w / 2.0,
-                h / 2.0
-            ));
-        }
-        if e[3] != [0.0, 0.0, 0.0, 1.0] {
-            return Err(format!(
-                "extrinsic: last row must be [0, 0, 0, 1], got {:?}",
-                e[3]
-            ));
-        }
-        let r = |i: usize| glam::DVec3::new(e[i][0], e[i][1], e[i][2]);
-        let (x, y, z) = (r(0), r(1), r(2));
-        let off = [
-            x.dot(x) - 1.0,
-            y.dot(y) - 1.0,
-            z.dot(z) - 1.0,
-            x.dot(y),
-            y.dot(z),
-            x.dot(z),
-        ];
-        if off.iter().any(|o| o.abs() > tol) || x.cross(y).dot(z) <= 0.0 {
-            return Err(
-                "extrinsic: the 3x3 rotation must be orthonormal with determinant +1 \
-                 (world-to-camera, OpenCV axes: x right, y down, z forward)"
-                    .into(),
-            );
-        }
-        let t = glam::DVec3::new(e[0][3], e[1][3], e[2][3]);
-        // X_cam = R X_world + t: the centre is -Rᵀ t; the camera's axes in the world are R's
-        // rows; lanecast's up is -y (OpenCV's y points down).
-        let eye = -(x * t.x + y * t.y + z * t.z);
-        let spec = CameraSpec {
-            eye,
-            look: eye + z,
-            up: -y,
-            fov_deg: Some((2.0 * (w / (2.0 * fx)).atan()).to_degrees()),
-        };
+        let spec = lanecast::spec_from_matrices(&k, &e)?;
+        lanecast::Camera::look_at(&spec, width, height).map_err(|e| e.to_string())?;
         Ok(PyCamera {
             spec,
             size: Some((width, height)),
@@ -162,7 +98,7 @@ impl PyCamera {
             eye: vec3("eye", eye)?,
             look: vec3("look", look)?,
             up,
-            fov_deg: Some(fov),
+            lens: Some(lanecast::Lens::Fov(fov)),
         };
         PyCamera::checked(spec, None)
     }
@@ -170,10 +106,11 @@ impl PyCamera {
     /// Camera.from_intrinsics(K, extrinsic, width, height): the camera of a 3x3 intrinsic
     /// matrix and a 4x4 world-to-camera extrinsic matrix, OpenCV/Open3D convention (x right,
     /// y down, z forward; pixel x's centre at x + 0.5, as Open3D's `create_rays_pinhole`).
-    /// lanecast's camera has square pixels and its principal point at the image centre, so K
-    /// must have fx == fy, no skew, and (cx, cy) == (width / 2, height / 2), each within 1e-6
-    /// relative; anything else raises ValueError. `extrinsic` of shape (V, 4, 4) (and K
-    /// (3, 3) or (V, 3, 3)) gives a list of V cameras. The camera keeps its image size.
+    /// K is any pinhole: positive fx and fy (not necessarily equal), any principal point (cx,
+    /// cy) within `limits::MAX_PRINCIPAL_OFFSET` image sizes of the centre, skew 0; the
+    /// extrinsic's 3x3 a rotation within RIGID_TOL. Anything else raises ValueError.
+    /// `extrinsic` of shape (V, 4, 4) (and K (3, 3) or (V, 3, 3)) gives a list of V cameras.
+    /// The camera keeps its image size.
     #[staticmethod]
     #[allow(non_snake_case)]
     fn from_intrinsics(
@@ -228,8 +165,6 @@ impl PyCamera {
                 std::array::from_fn(|i| std::array::from_fn(|j| ef[v * 16 + i * 4 + j]));
             let cam = PyCamera::from_matrices(km, em, width, height)
                 .map_err(|m| value_error(if batch { format!("view {v}: {m}") } else { m }))?;
-            cam.resolve(None, None)
-                .map_err(|e| value_error(format!("view {v}: {e}")))?;
             cams.push(cam);
         }
         if batch {
@@ -257,10 +192,50 @@ impl PyCamera {
         self.spec.up.to_array()
     }
 
-    /// Horizontal field of view, degrees.
+    /// Horizontal field of view, degrees: as given, or for intrinsics `2 atan(W / (2 fx))` of
+    /// the camera's image (the field of view its principal point is centred in, when it is).
     #[getter]
     fn fov(&self) -> f64 {
-        self.spec.fov_deg.unwrap_or(lanecast::DEFAULT_FOV)
+        match (self.spec.lens, self.size) {
+            (Some(Lens::Pinhole(k)), Some((w, _))) => {
+                (2.0 * (w as f64 / (2.0 * k.fx)).atan()).to_degrees()
+            }
+            _ => self.spec.fov_deg().unwrap_or(lanecast::DEFAULT_FOV),
+        }
+    }
+
+    /// (fx, fy, cx, cy) in pixels for a camera made from intrinsics, else None.
+    #[getter]
+    fn intrinsics(&self) -> Option<(f64, f64, f64, f64)> {
+        match self.spec.lens {
+            Some(Lens::Pinhole(k)) => Some((k.fx, k.fy, k.cx, k.cy)),
+            _ => None,
+        }
+    }
+
+    /// The 3x3 K of the camera for a `width` x `height` image (its own size when it has one),
+    /// float64: `[[fx, 0, cx], [0, fy, cy], [0, 0, 1]]`, a field of view's
+    /// `fx = fy = W / (2 tan(fov/2))`, `cx = W/2`, `cy = H/2` (README "Camera").
+    #[pyo3(name = "K", signature = (width = None, height = None))]
+    fn k_matrix<'py>(
+        &self,
+        py: Python<'py>,
+        #[pyo3(from_py_with = args::opt_width)] width: Option<u32>,
+        #[pyo3(from_py_with = args::opt_height)] height: Option<u32>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let cam = self.resolve(width, height)?;
+        Ok(PyArray2::from_owned_array(py, matrix(cam.k_matrix())))
+    }
+
+    /// The 4x4 world-to-camera matrix, OpenCV axes (x right, y down, z forward), float64.
+    fn extrinsic<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let (w, h) = self.size.unwrap_or((640, 480));
+        let cam =
+            lanecast::Camera::look_at(&self.spec, w, h).map_err(|e| value_error(e.to_string()))?;
+        Ok(PyArray2::from_owned_array(
+            py,
+            matrix(cam.world_to_camera()),
+        ))
     }
 
     /// (width, height) for a camera made from intrinsics, else None.
@@ -299,12 +274,15 @@ impl PyCamera {
             Some((w, h)) => format!(", size=({w}, {h})"),
             None => String::new(),
         };
+        let lens = match self.intrinsics() {
+            Some(k) => format!("intrinsics={k:?}"),
+            None => format!("fov={}", self.fov()),
+        };
         format!(
-            "Camera(eye={:?}, look={:?}, up={:?}, fov={}{size})",
+            "Camera(eye={:?}, look={:?}, up={:?}, {lens}{size})",
             self.eye(),
             self.look(),
             self.up(),
-            self.fov()
         )
     }
 
@@ -315,19 +293,30 @@ impl PyCamera {
         }
     }
 
-    /// (eye, look, up, fov, size): what pickling keeps.
+    /// (eye, look, up, fov, size, intrinsics): what pickling keeps.
     fn _state(&self) -> CameraState {
-        (self.eye(), self.look(), self.up(), self.fov(), self.size)
+        (
+            self.eye(),
+            self.look(),
+            self.up(),
+            self.fov(),
+            self.size,
+            self.intrinsics(),
+        )
     }
 
     #[staticmethod]
     fn _from_state(state: CameraState) -> PyResult<PyCamera> {
-        let (eye, look, up, fov, size) = state;
+        let (eye, look, up, fov, size, k) = state;
+        let lens = match k {
+            Some((fx, fy, cx, cy)) => Lens::Pinhole(lanecast::Intrinsics { fx, fy, cx, cy }),
+            None => Lens::Fov(fov),
+        };
         let spec = CameraSpec {
             eye: glam::DVec3::from_array(eye),
             look: glam::DVec3::from_array(look),
             up: glam::DVec3::from_array(up),
-            fov_deg: Some(fov),
+            lens: Some(lens),
         };
         PyCamera::checked(spec, size)
     }
@@ -391,4 +380,9 @@ pub(crate) fn cameras_arg(
         cams.push(cam);
     }
     Ok(cams)
+}
+
+/// A row-major matrix as an ndarray.
+pub(crate) fn matrix<const R: usize, const C: usize>(m: [[f64; C]; R]) -> Array2<f64> {
+    Array2::from_shape_vec((R, C), m.into_iter().flatten().collect()).expect("R x C values")
 }

@@ -17,7 +17,7 @@ mod render;
 mod scene;
 mod threads;
 
-use camera::{INTRINSICS_TOL, PyCamera};
+use camera::PyCamera;
 use pyo3::prelude::*;
 use render::{Render, shade};
 use scene::PyScene;
@@ -29,7 +29,7 @@ fn _lanecast(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyCamera>()?;
     m.add_class::<Render>()?;
     m.add_function(wrap_pyfunction!(shade, m)?)?;
-    m.add("INTRINSICS_TOL", INTRINSICS_TOL)?;
+    m.add("RIGID_TOL", lanecast::scene::pose::RIGID_TOL)?;
     m.add("MAX_THREADS", lanecast::limits::MAX_THREADS)?;
     m.add("MAX_SIDE", lanecast::limits::MAX_SIDE)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

@@ -109,33 +109,50 @@ pub(crate) fn state<'py>(py: Python<'py>, s: &Scene) -> PyResult<Bound<'py, PyTu
         parts.push(part);
     }
     let c = s.camera;
+    let lens = match c.lens {
+        Some(lanecast::Lens::Fov(f)) => Some(vec![f]),
+        Some(lanecast::Lens::Pinhole(k)) => Some(vec![k.fx, k.fy, k.cx, k.cy]),
+        None => None,
+    };
     (
-        1u32,
+        2u32,
         s.source.clone(),
         (c.eye.to_array(), c.look.to_array(), c.up.to_array()),
-        c.fov_deg,
+        lens,
         s.warnings.clone(),
         PyList::new(py, parts)?,
     )
         .into_pyobject(py)
 }
 
-/// What `Scene._state` gives: version, source, (eye, look, up), fov, warnings, runs.
+/// What `Scene._state` gives: version, source, (eye, look, up), lens ([fov] or [fx, fy, cx,
+/// cy], or None), warnings, runs.
 pub(crate) type SceneState<'py> = (
     u32,
     PathBuf,
     ([f64; 3], [f64; 3], [f64; 3]),
-    Option<f64>,
+    Option<Vec<f64>>,
     Vec<String>,
     Vec<Bound<'py, PyTuple>>,
 );
 
 /// The scene a `_state` gave, its structure checked (see `Scene._from_state`).
 pub(crate) fn from_state(state: SceneState<'_>) -> PyResult<Scene> {
-    let (version, source, (eye, look, up), fov_deg, warnings, parts) = state;
-    if version != 1 {
+    let (version, source, (eye, look, up), lens, warnings, parts) = state;
+    if version != 2 {
         return Err(corrupt(&format!("version {version}")));
     }
+    let lens = match lens.as_deref() {
+        None => None,
+        Some(&[f]) => Some(lanecast::Lens::Fov(f)),
+        Some(&[fx, fy, cx, cy]) => Some(lanecast::Lens::Pinhole(lanecast::Intrinsics {
+            fx,
+            fy,
+            cx,
+            cy,
+        })),
+        Some(_) => return Err(corrupt("lens")),
+    };
     let mut shapes = Shapes::new();
     for part in parts {
         let kind: String = part.get_item(0)?.extract()?;
@@ -198,7 +215,7 @@ pub(crate) fn from_state(state: SceneState<'_>) -> PyResult<Scene> {
             eye: glam::DVec3::from_array(eye),
             look: glam::DVec3::from_array(look),
             up: glam::DVec3::from_array(up),
-            fov_deg,
+            lens,
         },
         shapes,
         warnings,

@@ -24,6 +24,14 @@ pub(crate) struct Render {
     depth: Py<PyAny>,
     z: Option<Py<PyAny>>,
     n: Option<Py<PyAny>>,
+    /// Each view's 3x3 intrinsic matrix, float64: (3, 3), or (V, 3, 3) for a batch
+    /// (`Camera::k_matrix`: a field of view's too).
+    #[pyo3(get, name = "K")]
+    k: Py<PyAny>,
+    /// Each view's 4x4 world-to-camera matrix, OpenCV axes (x right, y down, z forward),
+    /// float64: (4, 4), or (V, 4, 4) for a batch.
+    #[pyo3(get)]
+    extrinsics: Py<PyAny>,
 }
 
 /// What a render computes beside ids and depth (the library's `Frame::z_depth`,
@@ -103,17 +111,27 @@ impl Render {
     fn from_buffers(
         py: Python<'_>,
         lead: &[usize],
+        cams: &[lanecast::Camera],
         (h, w): (usize, usize),
         (ids, depth): (Vec<i32>, Vec<f32>),
         z: Option<Vec<f32>>,
         n: Option<Vec<[f32; 3]>>,
     ) -> Render {
         let shape = [lead, &[h, w]].concat();
+        let ks: Vec<f64> = cams
+            .iter()
+            .flat_map(|c| c.k_matrix().into_iter().flatten())
+            .collect();
+        let es: Vec<f64> = (cams.iter())
+            .flat_map(|c| c.world_to_camera().into_iter().flatten())
+            .collect();
         Render {
             ids: array(py, ids, &shape),
             depth: array(py, depth, &shape),
             z: z.map(|z| array(py, z, &shape)),
             n: n.map(|n| array(py, n.into_flattened(), &[&shape[..], &[3]].concat())),
+            k: array(py, ks, &[lead, &[3, 3]].concat()),
+            extrinsics: array(py, es, &[lead, &[4, 4]].concat()),
         }
     }
 }
@@ -138,7 +156,15 @@ pub(crate) fn one(
     .map_err(|e| py_err(py, e))?;
     let size = (frame.height as usize, frame.width as usize);
     let buffers = (frame.ids, frame.depth);
-    Ok(Render::from_buffers(py, &[], size, buffers, z, n))
+    Ok(Render::from_buffers(
+        py,
+        &[],
+        std::slice::from_ref(cam),
+        size,
+        buffers,
+        z,
+        n,
+    ))
 }
 
 /// Many views from `prepared`, `cams` all `w` x `h`, the GIL released for the whole batch:
@@ -188,6 +214,7 @@ pub(crate) fn views(
     Ok(Render::from_buffers(
         py,
         &[cams.len()],
+        cams,
         (h, w),
         (ids, depth),
         z,

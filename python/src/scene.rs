@@ -142,7 +142,9 @@ impl PyScene {
     fn camera(&self) -> PyCamera {
         PyCamera {
             spec: CameraSpec {
-                fov_deg: Some(self.scene.camera.fov_deg.unwrap_or(lanecast::DEFAULT_FOV)),
+                lens: Some(
+                    (self.scene.camera.lens).unwrap_or(lanecast::Lens::Fov(lanecast::DEFAULT_FOV)),
+                ),
                 ..self.scene.camera
             },
             size: None,

@@ -295,7 +295,7 @@ mod tests {
                 eye: DVec3::ZERO,
                 look: DVec3::NEG_Z,
                 up: DVec3::Y,
-                fov_deg: None,
+                lens: None,
             },
             shapes: shapes.into(),
             warnings: Vec::new(),

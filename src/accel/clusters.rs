@@ -229,7 +229,7 @@ mod tests {
                 eye,
                 look: mid + rng.direction() * extent * rng.range(0.0, 0.7),
                 up: rng.direction(),
-                fov_deg: Some(fov),
+                lens: Some(crate::scene::Lens::Fov(fov)),
             };
             let Ok(camera) = Camera::look_at(&spec, w, h) else {
                 continue;

@@ -44,9 +44,10 @@ impl Screen {
     /// `camera.rs` inverted.
     fn pixel(&self, (sx, sy): (f64, f64)) -> (f64, f64) {
         let v = &self.view;
+        let (px, py) = v.principal;
         (
-            (sx / v.half_w + 1.0) * self.w / 2.0 - 0.5,
-            (1.0 - sy / v.half_h) * self.h / 2.0 - 0.5,
+            (sx / v.half_w + px) * self.w / 2.0 - 0.5,
+            (py - sy / v.half_h) * self.h / 2.0 - 0.5,
         )
     }
 

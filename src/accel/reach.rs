@@ -18,8 +18,9 @@
 //! `n . d >= -E`, with `E = max(32u, 2 (8u + a))` taken (at least 1.4 times the bound).
 //! A hit also needs `t > 0`, so `c32 = fl(N . d32) > 0` (below: `N . d > -e_c`).
 //!
-//! Pixel rays are `d = q / |q|`, `q = f + sx r + sy u` with the exact screen coordinates
-//! `|sx| <= half_w`, `|sy| <= half_h`, so `|q| <= S = sqrt(1 + half_w^2 + half_h^2)`. The
+//! Pixel rays are `d = q / |q|`, `q = f + sx r + sy u` with the exact screen coordinates inside
+//! the image's rectangle (`Camera::screen`: `|sx| <= half_w`, `|sy| <= half_h` for a field of
+//! view), so `|q| <= S = sqrt(1 + max sx^2 + max sy^2)`. The
 //! conditions `n . q >= -E |q|` hold only where `n . q >= -E S`: half-planes in `(sx, sy)`.
 //! The image rectangle clipped by them (Sutherland-Hodgman) is a convex [`Region`] holding
 //! every pixel whose ray a kernel may accept. Nothing else is assumed: not the polygon's
@@ -102,6 +103,10 @@ pub(crate) struct View {
     /// The screen's half width and height at distance 1.
     pub(crate) half_w: f64,
     pub(crate) half_h: f64,
+    /// The principal point in half images, `(2cx/W, 2cy/H)` (`Camera::principal`).
+    pub(crate) principal: (f64, f64),
+    /// The image's edges in screen coordinates, `[left, right, bottom, top]`.
+    pub(crate) screen: [f64; 4],
     /// `S`: the longest `|q|` over the image.
     stretch: f64,
     /// `E`: how far outside an edge plane (radians) an accepted ray's exact direction may lie.
@@ -117,6 +122,7 @@ impl View {
     pub(crate) fn new(camera: &Camera) -> View {
         let a = camera.direction_error();
         let eps = 8.0 * U32;
+        let (sx, sy) = camera.screen_reach();
         View {
             eye: camera.eye,
             f: camera.f,
@@ -124,7 +130,9 @@ impl View {
             u: camera.u,
             half_w: camera.half_w,
             half_h: camera.half_h,
-            stretch: (1.0 + camera.half_w.powi(2) + camera.half_h.powi(2)).sqrt(),
+            principal: camera.principal(),
+            screen: camera.screen(),
+            stretch: (1.0 + sx.powi(2) + sy.powi(2)).sqrt(),
             edge: (32.0 * U32).max(2.0 * (eps + a)),
             cosine: 2.0 * (a + 4.0 * U32),
             ray: a,
@@ -153,10 +161,10 @@ impl View {
         let edges = n.map(|e| line(e, self.edge));
         // most polygons: the edges' lines meet in a polygon inside the image (the plane's side
         // then cuts nothing off it that matters: the region may keep more)
-        if let Some(region) = Region::corners(&edges, self.half_w, self.half_h) {
+        if let Some(region) = Region::corners(&edges, self.screen) {
             return region;
         }
-        let mut region = Region::image(self.half_w, self.half_h);
+        let mut region = Region::image(self.screen);
         for [a, b, c] in edges.into_iter().chain([line(nrm, self.cosine)]) {
             region.clip(a, b, c);
         }

@@ -170,8 +170,9 @@ pub(super) struct RenderArgs {
     /// threads, SIMD width, phase times, best and median render, rays/s, peak memory.
     #[arg(long, value_name = "FILE.json")]
     pub(super) stats: Option<PathBuf>,
-    /// Render one view per camera line of FILE (`camera eye X Y Z look X Y Z up X Y Z [fov
-    /// DEG]`), all from one load of the scene. Outputs take numbered names (-o
+    /// Render one view per line of FILE (`camera eye X Y Z look X Y Z up X Y Z [fov DEG | K
+    /// FX FY CX CY]`, or `extrinsic M00 .. M33 [K FX FY CX CY]`: a 4x4 world-to-camera matrix,
+    /// OpenCV axes), all from one load of the scene. Outputs take numbered names (-o
     /// frames/view_%05d.png, views counted from 0) or -o - (images one after another).
     #[arg(long, value_name = "FILE", conflicts_with = "orbit")]
     pub(super) views: Option<PathBuf>,
@@ -179,6 +180,10 @@ pub(super) struct RenderArgs {
     /// point, at its distance and height. Outputs as with --views.
     #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = orbit_views)]
     pub(super) orbit: Option<u32>,
+    /// With --orbit: write the views file of the orbit's cameras to FILE (numbers in full, so
+    /// --views FILE renders the same views bit for bit).
+    #[arg(long, value_name = "FILE")]
+    pub(super) save_views: Option<PathBuf>,
     /// With --views or --orbit: leave out every view whose outputs all exist (a rerun picks up
     /// where an interrupted run stopped).
     #[arg(long)]

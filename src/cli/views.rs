@@ -51,6 +51,15 @@ pub fn default_output(input: &Path) -> Result<PathBuf> {
 /// without several views, `--skip-existing` with no file per view (`-o -` alone), `--repeat` or camera flags that a views file overrides, outputs that
 /// are not numbered patterns, and a numbered `--stats` (one record covers the run).
 pub fn check(s: &RenderSettings, typed: &Typed) -> Result<()> {
+    if let Some(p) = &s.save_views
+        && !matches!(s.views, Some(ViewSource::Orbit(_)))
+    {
+        return Err(Error::usage(format!(
+            "--save-views {}: writes the cameras of --orbit N; a --views file already holds \
+             its own, and one view's camera is the scene's",
+            p.display()
+        )));
+    }
     let Some(source) = &s.views else {
         if s.skip_existing {
             return Err(Error::usage(

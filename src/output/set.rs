@@ -55,6 +55,8 @@ pub enum OutputKind {
     Npy,
     /// A JSON record: `.json`.
     Json,
+    /// Text under any name (`--save-views`).
+    Text,
 }
 
 impl OutputKind {
@@ -69,6 +71,7 @@ impl OutputKind {
             OutputKind::Image => matches!(ext.as_deref(), Some("png" | "bmp")),
             OutputKind::Npy => ext.as_deref() == Some("npy"),
             OutputKind::Json => ext.as_deref() == Some("json"),
+            OutputKind::Text => true,
         };
         if ok {
             return Ok(());
@@ -77,6 +80,7 @@ impl OutputKind {
             OutputKind::Image => "unsupported image format; the name must end in .png or .bmp",
             OutputKind::Npy => "written as NumPy data; the name must end in .npy",
             OutputKind::Json => "written as JSON; the name must end in .json",
+            OutputKind::Text => unreachable!("text takes any name"),
         };
         Err(Error::usage(format!("{flag} {}: {what}", path.display())))
     }

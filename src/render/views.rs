@@ -374,7 +374,7 @@ mod tests {
                 eye: DVec3::new(8.0 * a.sin(), 2.0 + k as f64 * 0.3, 8.0 * a.cos()),
                 look: DVec3::new(0.0, 1.0, 0.0),
                 up: DVec3::Y,
-                fov_deg: Some(20.0 + 10.0 * k as f64),
+                lens: Some(crate::scene::Lens::Fov(20.0 + 10.0 * k as f64)),
             };
             let camera = Camera::look_at(&spec, 37 + k, 23 + 2 * k).unwrap();
             let frame = views.render(&camera).unwrap();
@@ -399,7 +399,7 @@ mod tests {
             eye: DVec3::ONE,
             look: DVec3::ONE,
             up: DVec3::Y,
-            fov_deg: None,
+            lens: None,
         };
         let e = Camera::look_at(&on_look, 8, 8).unwrap_err().to_string();
         assert!(e.contains("same point"), "{e}");
@@ -407,7 +407,7 @@ mod tests {
             up: DVec3::Y,
             look: DVec3::new(0.0, 9.0, 0.0),
             eye: DVec3::ZERO,
-            fov_deg: None,
+            lens: None,
         };
         let e = Camera::look_at(&parallel, 8, 8).unwrap_err().to_string();
         assert!(e.contains("parallel"), "{e}");

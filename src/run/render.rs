@@ -171,6 +171,22 @@ pub(crate) fn render_command(s: &RenderSettings) -> Result<()> {
 
     let (scene, camera) = load_view(&s.view, &set)?;
     stats.primitives = scene.counts();
+    let lens = (s.view.fov.map(crate::scene::Lens::Fov))
+        .or(scene.camera.lens)
+        .unwrap_or(crate::scene::Lens::Fov(crate::camera::DEFAULT_FOV));
+    stats.poses.push(crate::stats::ViewRecord {
+        spec: crate::scene::CameraSpec {
+            lens: Some(lens),
+            ..scene.camera
+        },
+        camera,
+        outputs: (stats.outputs.iter())
+            .filter(|(what, _)| *what != "stats")
+            .cloned()
+            .collect(),
+        rendered: None,
+        skipped: false,
+    });
     lap("parse", &mut stats, &mut clock);
 
     let options = Options {

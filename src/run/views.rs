@@ -17,8 +17,8 @@ use crate::output::{self, Expected, OutputKind, OutputSet, Pattern};
 use crate::progress;
 use crate::render::{Options, Views};
 use crate::scene::views::{ViewLine, load_views, orbit};
-use crate::scene::{CameraSpec, Scene, load_scene_meshes};
-use crate::stats::{Stats, ViewTime, ViewTimes, secs};
+use crate::scene::{CameraSpec, Lens, Scene, load_scene_meshes};
+use crate::stats::{Stats, ViewRecord, ViewTime, ViewTimes, secs};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::Ordering;
@@ -106,44 +106,71 @@ impl Numbered {
     }
 }
 
-/// The cameras of the run, with the fov each uses: a views file's line's own, else `-fov`,
-/// else the scene's, else the default; an orbit's from the scene's camera (with `--eye`,
-/// `--look`, `--up` applied) and `-fov`.
+/// The cameras of the run, with the lens each uses: a views file's line's own (a field of view
+/// or intrinsics), else `-fov`, else the scene's, else the default; an orbit's from the scene's
+/// camera (with `--eye`, `--look`, `--up` applied) and `-fov`, else the scene's lens.
+/// Each camera comes with its spec, the lens filled in (the default field of view where none
+/// is given): what `--stats` records and `--save-views` writes.
 fn cameras(
     s: &RenderSettings,
     source: &ViewSource,
     lines: &[ViewLine],
     scene: &Scene,
-) -> Result<Vec<crate::Camera>> {
+) -> Result<Vec<(CameraSpec, crate::Camera)>> {
     let (w, h) = (s.view.width, s.view.height);
-    let fov = s.view.fov.or(scene.camera.fov_deg);
+    let lens = s.view.fov.map(Lens::Fov).or(scene.camera.lens);
+    let lens = lens.unwrap_or(Lens::Fov(crate::camera::DEFAULT_FOV));
     match source {
         ViewSource::File(file) => lines
             .iter()
             .map(|l| {
                 let spec = CameraSpec {
-                    fov_deg: l.camera.fov_deg.or(fov),
+                    lens: Some(l.camera.lens.unwrap_or(lens)),
                     ..l.camera
                 };
                 crate::Camera::look_at(&spec, w, h)
+                    .map(|c| (spec, c))
                     .map_err(|e| Error::input(file, l.line, l.col, e.to_string()))
             })
             .collect(),
         ViewSource::Orbit(n) => {
             let spec = CameraSpec {
-                fov_deg: fov,
+                lens: Some(lens),
                 ..scene.camera
             };
             orbit(&spec, *n)
-                .iter()
+                .into_iter()
                 .enumerate()
                 .map(|(k, c)| {
-                    crate::Camera::look_at(c, w, h)
+                    crate::Camera::look_at(&c, w, h)
+                        .map(|cam| (c, cam))
                         .map_err(|e| Error::usage(format!("--orbit {n}: view {k}: {e}")))
                 })
                 .collect()
         }
     }
+}
+
+/// The `--save-views` file's name checked against every file the run reads and writes.
+fn check_save_views(
+    p: &Path,
+    reads: &[(&str, &Path)],
+    names: &[Vec<PathBuf>],
+    stats: Option<&Path>,
+) -> Result<()> {
+    output::check_not_read("--save-views", p, reads.iter().copied())?;
+    let id = output::identity(p);
+    let clash = (names.iter().flatten().map(PathBuf::as_path))
+        .chain(stats)
+        .find(|n| output::identity(n) == id);
+    if let Some(clash) = clash {
+        return Err(Error::usage(format!(
+            "--save-views {}: the run also writes {} by that name",
+            p.display(),
+            clash.display()
+        )));
+    }
+    Ok(())
 }
 
 /// Runs the render command over many views.
@@ -187,6 +214,9 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
             )));
         }
     }
+    if let Some(p) = &s.save_views {
+        check_save_views(p, &stats_reads, &names, s.stats.as_deref())?;
+    }
     for w in &scene.warnings {
         eprintln!("lanecast: warning: {w}");
     }
@@ -204,7 +234,7 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
     let loaded = secs(start.elapsed());
     // every view's eye against the f32 range rule, before anything renders
     let clock = Instant::now();
-    for (k, camera) in cameras.iter().enumerate() {
+    for (k, (_, camera)) in cameras.iter().enumerate() {
         views
             .check(camera)
             .map_err(|e| in_view(source, &lines, k, e))?;
@@ -220,6 +250,30 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
         precision: super::precision_name(s.kernel.precision(), s.view.method),
         ..run_stats(s, outputs.collect())
     };
+    if let (Some(p), ViewSource::Orbit(n)) = (&s.save_views, source) {
+        let specs: Vec<CameraSpec> = cameras.iter().map(|c| c.0).collect();
+        let header = format!(
+            "the {n} views of lanecast --orbit {n} ({}x{}): `--views` this file renders them \
+             again",
+            s.view.width, s.view.height
+        );
+        let text = crate::scene::views::write_views(&specs, &header);
+        let mut set = OutputSet::create(&[("--save-views", p, OutputKind::Text)], &stats_reads)?;
+        set.write_bytes("--save-views", text.as_bytes())?;
+        set.commit()?;
+    }
+    let keys: Vec<&'static str> = outs.iter().map(|o| stats_key(o.flag)).collect();
+    stats.poses = (cameras.iter().zip(&names))
+        .map(|(&(spec, camera), paths)| ViewRecord {
+            spec,
+            camera,
+            outputs: (keys.iter().copied())
+                .zip(paths.iter().map(|p| p.display().to_string()))
+                .collect(),
+            rendered: None,
+            skipped: false,
+        })
+        .collect();
     stats.phases.push(("load", loaded));
     stats.phases.push(("check", checked));
     let loop_start = Instant::now();
@@ -227,9 +281,10 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
     let flags: Vec<(&'static str, OutputKind)> = outs.iter().map(|o| (o.flag, o.kind)).collect();
     // the progress line (a terminal only, past a second) counts views
     progress::with_progress(cameras.len(), |done| -> Result<()> {
-        for (k, camera) in cameras.iter().enumerate() {
+        for (k, (_, camera)) in cameras.iter().enumerate() {
             let paths = &names[k];
             if s.skip_existing && !paths.is_empty() && complete(&flags, paths, s) {
+                stats.poses[k].skipped = true;
                 times.skipped += 1;
                 done.fetch_add(1, Ordering::Relaxed);
                 continue;
@@ -269,6 +324,7 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
                 None => true,
             };
             time.output_s = secs(clock.elapsed());
+            stats.poses[k].rendered = Some(times.each.len());
             times.each.push(time);
             done.fetch_add(1, Ordering::Relaxed);
             if !sent {

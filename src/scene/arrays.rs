@@ -221,7 +221,7 @@ mod tests {
             eye: DVec3::new(0.0, 0.0, 5.0),
             look: DVec3::ZERO,
             up: DVec3::Y,
-            fov_deg: Some(60.0),
+            lens: Some(crate::scene::Lens::Fov(60.0)),
         })
     }
 

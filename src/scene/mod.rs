@@ -15,6 +15,7 @@ mod number;
 mod obj;
 pub(crate) mod parse;
 mod ply;
+pub mod pose;
 pub(crate) mod range;
 pub(crate) mod range_clusters;
 mod scene_chunk;
@@ -68,8 +69,46 @@ pub struct CameraSpec {
     pub look: DVec3,
     /// Up direction, any length; need not be perpendicular to the view direction.
     pub up: DVec3,
-    /// Horizontal field of view in degrees, when the scene gives one.
-    pub fov_deg: Option<f64>,
+    /// The lens, when the scene gives one: a horizontal field of view (`fov DEGREES`) or
+    /// pinhole intrinsics in pixels (`K FX FY CX CY`).
+    pub lens: Option<Lens>,
+}
+
+/// How a camera maps pixels to directions, as written: `camera::Camera` turns it into the one
+/// pinhole formula (module `camera`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Lens {
+    /// Horizontal field of view in degrees, 0 < fov < 180: the centred pinhole with square
+    /// pixels that spans the image's width.
+    Fov(f64),
+    /// Intrinsics in pixels of the rendered image (`-size`), skew 0.
+    Pinhole(Intrinsics),
+}
+
+/// Pinhole intrinsics, in pixels of the rendered image: focal lengths `fx`, `fy` and principal
+/// point `(cx, cy)`, where pixel (x, y) spans `[x, x + 1) x [y, y + 1)` (its centre at
+/// `x + 0.5`, row 0 at the top): the 3x3 `K = [[fx, 0, cx], [0, fy, cy], [0, 0, 1]]`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Intrinsics {
+    /// Focal length along x, pixels.
+    pub fx: f64,
+    /// Focal length along y, pixels.
+    pub fy: f64,
+    /// Principal point x, pixels from the image's left edge.
+    pub cx: f64,
+    /// Principal point y, pixels from the image's top edge.
+    pub cy: f64,
+}
+
+impl CameraSpec {
+    /// The field of view in degrees when the lens is given as one (`None` for no lens and for
+    /// intrinsics).
+    pub fn fov_deg(&self) -> Option<f64> {
+        match self.lens {
+            Some(Lens::Fov(f)) => Some(f),
+            _ => None,
+        }
+    }
 }
 
 /// One primitive, in the scene's own f64 coordinates.

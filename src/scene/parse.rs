@@ -4,7 +4,7 @@
 //! tokens separated by spaces or tabs, a leading BOM and CRLF line ends accepted:
 //!
 //! ```text
-//! camera eye EX EY EZ look LX LY LZ up UX UY UZ [fov DEGREES]
+//! camera eye EX EY EZ look LX LY LZ up UX UY UZ [fov DEGREES | K FX FY CX CY]
 //! sphere CX CY CZ RADIUS
 //! triangle AX AY AZ  BX BY BZ  CX CY CZ
 //! quad AX AY AZ  BX BY BZ  CX CY CZ  DX DY DZ     # vertices in perimeter order
@@ -535,7 +535,7 @@ fn frame_points(each: impl Fn(&mut dyn FnMut(DVec3)), images: &[Framing]) -> Opt
         eye: look + DVec3::Z * distance,
         look,
         up: DVec3::Y,
-        fov_deg: None,
+        lens: None,
     })
 }
 

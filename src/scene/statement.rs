@@ -8,14 +8,15 @@
 //! and words every error.
 
 use super::number::{decimal, finite_token, is_decimal};
-use super::{CameraSpec, Shape, validate};
+use super::{CameraSpec, Intrinsics, Lens, Shape, validate};
 use crate::error::{Error, Result};
 use glam::DVec3;
 use std::path::Path;
 
 pub const KEYWORDS: &str = "camera, sphere, triangle, quad, mesh";
-pub const CAMERA_SYNTAX: &str = "camera eye X Y Z look X Y Z up X Y Z [fov DEGREES]";
-const CAMERA_WORDS: [&str; 4] = ["eye", "look", "up", "fov"];
+pub const CAMERA_SYNTAX: &str =
+    "camera eye X Y Z look X Y Z up X Y Z [fov DEGREES | K FX FY CX CY]";
+const CAMERA_WORDS: [&str; 5] = ["eye", "look", "up", "fov", "K"];
 
 /// A token and its byte offset in its line.
 pub struct Tok<'a> {
@@ -81,7 +82,7 @@ impl Ctx<'_> {
     }
 
     /// A token as a finite decimal number.
-    fn number(&self, t: &Tok) -> Result<f64> {
+    pub fn number(&self, t: &Tok) -> Result<f64> {
         let Some(x) = decimal(t.s.as_bytes()) else {
             let msg = format!(
                 "{} is not a number (expected a finite decimal such as 1, -2.5 or 1e-3)",
@@ -220,6 +221,82 @@ fn too_many(ctx: &Ctx, toks: &[Tok], name: &str, expects: usize) -> Error {
     )
 }
 
+/// What may follow a camera's pose, from token `i` to the end of the line: nothing, `fov
+/// DEGREES` or `K FX FY CX CY` (`validate::fov`, `validate::intrinsics`). `pose` names the
+/// pose's last word and how many numbers it takes, for messages.
+pub fn parse_lens(
+    ctx: &Ctx,
+    toks: &[Tok],
+    mut i: usize,
+    pose: (&str, usize),
+) -> Result<Option<Lens>> {
+    let mut lens = None;
+    let mut last = pose;
+    match toks.get(i).map(|t| t.s) {
+        Some("fov") => {
+            i += 1;
+            let Some(t) = toks.get(i) else {
+                return Err(ctx.whole("too few numbers: camera 'fov' expects 1, got 0"));
+            };
+            let deg = ctx.number(t)?;
+            validate::fov(deg).map_err(|m| ctx.at(t, m))?;
+            lens = Some(Lens::Fov(deg));
+            last = ("fov", 1);
+            i += 1;
+        }
+        Some("K") => {
+            let word = i;
+            i += 1;
+            let mut x = [0.0; 4];
+            for (k, v) in x.iter_mut().enumerate() {
+                match toks.get(i) {
+                    Some(t) if !CAMERA_WORDS.contains(&t.s) => *v = ctx.number(t)?,
+                    _ => {
+                        let few =
+                            format!("too few numbers: camera 'K' expects 4 (FX FY CX CY), got {k}");
+                        return Err(ctx.at(&toks[word], few));
+                    }
+                }
+                i += 1;
+            }
+            let k = Intrinsics {
+                fx: x[0],
+                fy: x[1],
+                cx: x[2],
+                cy: x[3],
+            };
+            if let Err(m) = validate::intrinsics(&k) {
+                // the focal length's own token where one is at fault
+                let at = match (k.fx > 0.0, k.fy > 0.0) {
+                    (false, _) => 1,
+                    (true, false) => 2,
+                    (true, true) => 0,
+                };
+                return Err(ctx.at(&toks[word + at], m));
+            }
+            lens = Some(Lens::Pinhole(k));
+            last = ("K", 4);
+        }
+        _ => {}
+    }
+    if let Some(t) = toks.get(i) {
+        if is_decimal(t.s) {
+            return Err(too_many(ctx, &toks[i..], last.0, last.1));
+        }
+        let msg = match last.0 {
+            "fov" => format!("camera: unexpected {} after 'fov DEGREES'", quote(t.s)),
+            "K" => format!("camera: unexpected {} after 'K FX FY CX CY'", quote(t.s)),
+            pose => format!(
+                "camera: unexpected {} after '{pose}' (only `fov DEGREES` or `K FX FY CX CY` \
+                 may follow)",
+                quote(t.s)
+            ),
+        };
+        return Err(ctx.at(t, msg));
+    }
+    Ok(lens)
+}
+
 pub fn parse_camera(ctx: &Ctx, toks: &[Tok]) -> Result<CameraSpec> {
     let mut i = 1;
     let mut groups = [DVec3::ZERO; 3];
@@ -254,44 +331,13 @@ pub fn parse_camera(ctx: &Ctx, toks: &[Tok]) -> Result<CameraSpec> {
         }
         groups[g] = DVec3::from_array(xyz);
     }
-    let mut fov_deg = None;
-    let mut last = "up";
-    if toks.get(i).is_some_and(|t| t.s == "fov") {
-        i += 1;
-        let Some(t) = toks.get(i) else {
-            return Err(ctx.whole("too few numbers: camera 'fov' expects 1, got 0"));
-        };
-        let deg = ctx.number(t)?;
-        validate::fov(deg).map_err(|m| ctx.at(t, m))?;
-        fov_deg = Some(deg);
-        last = "fov";
-        i += 1;
-    }
-    if let Some(t) = toks.get(i) {
-        if is_decimal(t.s) {
-            return Err(too_many(
-                ctx,
-                &toks[i..],
-                last,
-                if last == "up" { 3 } else { 1 },
-            ));
-        }
-        let msg = if last == "up" {
-            format!(
-                "camera: unexpected {} after 'up' (only `fov DEGREES` may follow)",
-                quote(t.s)
-            )
-        } else {
-            format!("camera: unexpected {} after 'fov DEGREES'", quote(t.s))
-        };
-        return Err(ctx.at(t, msg));
-    }
+    let lens = parse_lens(ctx, toks, i, ("up", 3))?;
     let [eye, look, up] = groups;
     let spec = CameraSpec {
         eye,
         look,
         up,
-        fov_deg,
+        lens,
     };
     validate::camera(&spec).map_err(|m| ctx.whole(m))?;
     Ok(spec)

@@ -10,7 +10,7 @@
 //! infinity or underflows below the smallest normal f64, e.g. coordinates around 1e200 or
 //! 1e-200) is rejected, so that no NaN or infinity reaches the renderer.
 
-use super::CameraSpec;
+use super::{CameraSpec, Intrinsics, Lens};
 use glam::DVec3;
 
 /// A triangle (or a corner of a quad) is degenerate when `|AB x AC| <= DEGENERATE_TOL * L^2`,
@@ -209,8 +209,27 @@ pub fn fov(deg: f64) -> Result<(), String> {
     }
 }
 
+/// Pinhole intrinsics as a `camera ... K FX FY CX CY` line gives them: focal lengths positive
+/// and finite, principal point finite. What depends on the image size (`limits::check_lens`)
+/// is checked when the camera is made for one.
+pub fn intrinsics(k: &Intrinsics) -> Result<(), String> {
+    for (name, f) in [("fx", k.fx), ("fy", k.fy)] {
+        if !(f > 0.0 && f.is_finite()) {
+            return Err(format!(
+                "focal length {name} = {f} pixels: it must be positive and finite"
+            ));
+        }
+    }
+    for (name, c) in [("cx", k.cx), ("cy", k.cy)] {
+        if !c.is_finite() {
+            return Err(format!("principal point {name} = {c}: it must be finite"));
+        }
+    }
+    Ok(())
+}
+
 /// A camera: eye and look distinct, up non-zero and not parallel to the view direction (within
-/// `CAMERA_PARALLEL_TOL`), fov (if given) valid.
+/// `CAMERA_PARALLEL_TOL`), the lens (if given) valid: a fov in (0, 180), or [`intrinsics`].
 pub fn camera(c: &CameraSpec) -> Result<(), String> {
     let dir = c.look - c.eye;
     if dir == DVec3::ZERO {
@@ -235,8 +254,10 @@ pub fn camera(c: &CameraSpec) -> Result<(), String> {
     if sin < CAMERA_PARALLEL_TOL || crate::camera::basis(c.eye, c.look, c.up).is_none() {
         return Err("camera up vector is parallel to the view direction (look - eye)".into());
     }
-    if let Some(deg) = c.fov_deg {
-        fov(deg)?;
+    match c.lens {
+        Some(Lens::Fov(deg)) => fov(deg)?,
+        Some(Lens::Pinhole(k)) => intrinsics(&k)?,
+        None => {}
     }
     Ok(())
 }
@@ -412,11 +433,11 @@ mod tests {
 
     #[test]
     fn camera_rules() {
-        let cam = |eye: DVec3, look: DVec3, up: DVec3, fov_deg| CameraSpec {
+        let cam = |eye: DVec3, look: DVec3, up: DVec3, fov_deg: Option<f64>| CameraSpec {
             eye,
             look,
             up,
-            fov_deg,
+            lens: fov_deg.map(Lens::Fov),
         };
         let (z, y) = (d(0., 0., 0.), d(0., 1., 0.));
         assert!(camera(&cam(d(0., 0., 5.), z, y, None)).is_ok());

@@ -5,11 +5,15 @@
 //! A views file is parsed by the scene parser's own statement rules (`statement::parse_camera`),
 //! so a line means there exactly what it means in a scene, with the same FILE:LINE:COL
 //! messages. Blank lines and `#` comments are allowed; every other line must be a `camera`
-//! line.
+//! line, or a rig's pose: `extrinsic M00 M01 ... M33` (a 4x4 world-to-camera matrix, row-major,
+//! OpenCV axes: `scene::pose`), followed, as a camera line's pose, by `K FX FY CX CY` or
+//! `fov DEGREES` or nothing. [`write_views`] writes cameras back as camera lines that parse to
+//! the same values, bit for bit.
 
 use super::CameraSpec;
 use super::chunks;
-use super::statement::{CAMERA_SYNTAX, Ctx, parse_camera, quote, tokenize};
+use super::statement::{CAMERA_SYNTAX, Ctx, Tok, parse_camera, parse_lens, quote, tokenize};
+use super::{Lens, pose, validate};
 use crate::error::{Error, Result};
 use crate::limits::{MAX_LINE_BYTES, MAX_VIEWS};
 use glam::DVec3;
@@ -50,6 +54,33 @@ pub fn load_views(path: &Path) -> Result<Vec<ViewLine>> {
     parse_views(text, path)
 }
 
+/// A rig's view line.
+pub const EXTRINSIC_SYNTAX: &str = "extrinsic M00 M01 ... M33 [K FX FY CX CY | fov DEGREES]";
+
+/// An `extrinsic` line: 16 numbers (the world-to-camera matrix, row-major), then the lens as
+/// a camera line's; the matrix must be a rigid transform (`pose::from_world_to_camera`).
+fn parse_extrinsic(ctx: &Ctx, toks: &[Tok]) -> Result<CameraSpec> {
+    let mut m = [[0.0; 4]; 4];
+    for k in 0..16 {
+        match toks.get(1 + k) {
+            Some(t) if t.s != "K" && t.s != "fov" => {
+                m[k / 4][k % 4] = ctx.number(t)?;
+            }
+            _ => {
+                return Err(ctx.whole(format!(
+                    "too few numbers: extrinsic expects 16 (a 4x4 world-to-camera matrix, \
+                     row-major), got {k}"
+                )));
+            }
+        }
+    }
+    let lens = parse_lens(ctx, toks, 17, ("extrinsic", 16))?;
+    let spec = pose::from_world_to_camera(&m).map_err(|e| ctx.whole(e))?;
+    let spec = CameraSpec { lens, ..spec };
+    validate::camera(&spec).map_err(|e| ctx.whole(e))?;
+    Ok(spec)
+}
+
 /// Parses views text; `file` names it in messages. Every camera is checked by the camera
 /// line's rules (`validate::camera`); a file with no camera, or more than
 /// `limits::MAX_VIEWS`, is refused.
@@ -72,20 +103,25 @@ pub fn parse_views(text: &str, file: &Path) -> Result<Vec<ViewLine>> {
         let content = line.find('#').map_or(line, |k| &line[..k]);
         tokenize(content, &mut toks);
         let Some(first) = toks.first() else { continue };
-        if first.s != "camera" {
-            return Err(ctx.at(
-                first,
-                format!(
-                    "expected a camera line (`{CAMERA_SYNTAX}`), found {}",
-                    quote(first.s)
-                ),
-            ));
-        }
+        let camera = match first.s {
+            "camera" => parse_camera(&ctx, &toks)?,
+            "extrinsic" => parse_extrinsic(&ctx, &toks)?,
+            other => {
+                return Err(ctx.at(
+                    first,
+                    format!(
+                        "expected a camera line (`{CAMERA_SYNTAX}` or `{EXTRINSIC_SYNTAX}`), \
+                         found {}",
+                        quote(other)
+                    ),
+                ));
+            }
+        };
         if views.len() == MAX_VIEWS {
             return Err(ctx.whole(format!("more than {MAX_VIEWS} views")));
         }
         views.push(ViewLine {
-            camera: parse_camera(&ctx, &toks)?,
+            camera,
             line: i + 1,
             col: ctx.col(first),
         });
@@ -97,6 +133,52 @@ pub fn parse_views(text: &str, file: &Path) -> Result<Vec<ViewLine>> {
         });
     }
     Ok(views)
+}
+
+/// The views file of `cameras`: one camera line each (`camera eye .. look .. up ..`, then
+/// `fov DEGREES` or `K FX FY CX CY` when it has a lens), every number written so that it
+/// parses back to the same f64 (Rust's shortest round-trip form), so [`parse_views`] gives
+/// back `cameras` exactly.
+pub fn write_views(cameras: &[CameraSpec], header: &str) -> String {
+    let mut out = String::new();
+    for line in header.lines() {
+        out.push_str("# ");
+        out.push_str(line);
+        out.push('\n');
+    }
+    for c in cameras {
+        let v = |v: DVec3| format!("{} {} {}", num(v.x), num(v.y), num(v.z));
+        out.push_str(&format!(
+            "camera eye {} look {} up {}",
+            v(c.eye),
+            v(c.look),
+            v(c.up)
+        ));
+        match c.lens {
+            Some(Lens::Fov(f)) => out.push_str(&format!(" fov {}", num(f))),
+            Some(Lens::Pinhole(k)) => out.push_str(&format!(
+                " K {} {} {} {}",
+                num(k.fx),
+                num(k.fy),
+                num(k.cx),
+                num(k.cy)
+            )),
+            None => {}
+        }
+        out.push('\n');
+    }
+    out
+}
+
+/// `x` in the fewest digits that parse back to it: plain where that is short, else with an
+/// exponent (`1e-300`, never 300 zeros).
+pub fn num(x: f64) -> String {
+    let plain = format!("{x}");
+    if plain.len() <= 24 {
+        plain
+    } else {
+        format!("{x:e}")
+    }
 }
 
 /// `n` cameras on a turntable: the eye of `spec` turned about the axis through `look` along
@@ -146,9 +228,9 @@ mod tests {
         assert_eq!(v.len(), 2);
         assert_eq!(v[0].line, 3);
         assert_eq!(v[0].camera.eye, DVec3::new(0.0, 0.0, 5.0));
-        assert_eq!(v[0].camera.fov_deg, None);
+        assert_eq!(v[0].camera.fov_deg(), None);
         assert_eq!(v[1].line, 4);
-        assert_eq!(v[1].camera.fov_deg, Some(30.0));
+        assert_eq!(v[1].camera.fov_deg(), Some(30.0));
         assert_eq!(v[1].camera.up, DVec3::Z);
     }
 
@@ -178,7 +260,7 @@ mod tests {
             eye: DVec3::new(0.0, 0.0, 7.0),
             look: DVec3::ZERO,
             up: DVec3::Y,
-            fov_deg: None,
+            lens: None,
         };
         for n in [4, 12, 100] {
             let path = orbit(&spec, n);
@@ -201,7 +283,7 @@ mod tests {
                 eye: v(&mut rnd) * scale,
                 look: v(&mut rnd) * scale,
                 up: v(&mut rnd),
-                fov_deg: Some(45.0),
+                lens: Some(crate::scene::Lens::Fov(45.0)),
             };
             let n = 1 + (rnd().abs() * 40.0) as usize;
             let path = orbit(&spec, n);
@@ -221,8 +303,8 @@ mod tests {
                     "view {k} of {n}"
                 );
                 assert_eq!(
-                    (c.look, c.up, c.fov_deg),
-                    (spec.look, spec.up, spec.fov_deg)
+                    (c.look, c.up, c.fov_deg()),
+                    (spec.look, spec.up, spec.fov_deg())
                 );
             }
             if n >= 4 && n.is_multiple_of(4) {
@@ -230,6 +312,116 @@ mod tests {
                 let d = (path[n / 4].eye - spec.eye).length();
                 assert!((d - r0 * 2f64.sqrt()).abs() <= 4.0 * tol, "{d} {r0}");
             }
+        }
+    }
+
+    #[test]
+    fn intrinsics_and_extrinsic_lines() {
+        let text = "camera eye 0 0 5 look 0 0 0 up 0 1 0 K 500 520 319.5 -10\n\
+                    extrinsic 1 0 0 0  0 -1 0 0  0 0 -1 5  0 0 0 1 K 400 400 320 240\n\
+                    extrinsic 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1\n";
+        let v = parse_views(text, Path::new("v.txt")).unwrap();
+        let k = |fx, fy, cx, cy| Some(Lens::Pinhole(crate::scene::Intrinsics { fx, fy, cx, cy }));
+        assert_eq!(v[0].camera.lens, k(500.0, 520.0, 319.5, -10.0));
+        // OpenCV: z forward = -z world, y down = -y world: the camera at (0, 0, 5) looking
+        // down -z with up +y
+        assert_eq!(v[1].camera.eye, DVec3::new(0.0, 0.0, 5.0));
+        assert_eq!(
+            v[1].camera.look - v[1].camera.eye,
+            DVec3::new(0.0, 0.0, -1.0)
+        );
+        assert_eq!(v[1].camera.up, DVec3::Y);
+        assert_eq!(v[1].camera.lens, k(400.0, 400.0, 320.0, 240.0));
+        assert_eq!(v[2].camera.lens, None);
+    }
+
+    #[test]
+    fn bad_intrinsics_and_extrinsics_name_file_line_and_column() {
+        let cam = "camera eye 0 0 5 look 0 0 0 up 0 1 0";
+        let e = err(&format!("{cam}\n{cam} K 0 500 320 240\n"));
+        assert!(
+            e.starts_with("v.txt:2:40:") && e.contains("fx = 0 pixels"),
+            "{e}"
+        );
+        let e = err(&format!("{cam} K 500 -2 320 240\n"));
+        assert!(e.starts_with("v.txt:1:44:") && e.contains("fy = -2"), "{e}");
+        let e = err(&format!("{cam} K 500 500 320\n"));
+        assert!(
+            e.starts_with("v.txt:1:38:") && e.contains("expects 4"),
+            "{e}"
+        );
+        let e = err(&format!("{cam} K 500 500 320 240 1\n"));
+        assert!(
+            e.starts_with("v.txt:1:") && e.contains("too many numbers"),
+            "{e}"
+        );
+        let e = err(&format!("{cam} K 500 500 320 240 fov 30\n"));
+        assert!(e.contains("unexpected 'fov' after 'K FX FY CX CY'"), "{e}");
+        let e = err(&format!("{cam} K 500 500 x 240\n"));
+        assert!(
+            e.starts_with("v.txt:1:48:") && e.contains("not a number"),
+            "{e}"
+        );
+        let e = err("  extrinsic 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0\n");
+        assert!(
+            e.starts_with("v.txt:1:3:") && e.contains("expects 16"),
+            "{e}"
+        );
+        let e = err("extrinsic 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1 2\n");
+        assert!(e.contains("too many numbers"), "{e}");
+        let e = err("\nextrinsic 1.1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1 K 5 5 2 2\n");
+        assert!(
+            e.starts_with("v.txt:2:1:") && e.contains("not a rigid transform"),
+            "{e}"
+        );
+        let e = err("extrinsic 1 0 0 0 0 1 0 0 0 0 1 0 0 0 1 1\n");
+        assert!(e.contains("last row must be 0 0 0 1"), "{e}");
+        let e = err("extrinsic 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1 K 5 0 2 2\n");
+        assert!(e.contains("fy = 0"), "{e}");
+    }
+
+    /// `write_views` gives back, through `parse_views`, every camera bit for bit: random
+    /// values over 1e-300 to 1e300, fields of view and intrinsics.
+    #[test]
+    fn written_views_parse_back_bit_for_bit() {
+        let mut rng = crate::test_rng::Rng(99);
+        let mut cams = Vec::new();
+        while cams.len() < 300 {
+            let x = |rng: &mut crate::test_rng::Rng| {
+                let v = rng.log(-300.0, 300.0) * if rng.unit() < 0.5 { -1.0 } else { 1.0 };
+                if rng.unit() < 0.5 {
+                    v
+                } else {
+                    rng.range(-10.0, 10.0)
+                }
+            };
+            let v = |rng: &mut crate::test_rng::Rng| DVec3::new(x(rng), x(rng), x(rng));
+            let lens = match rng.below(3) {
+                0 => None,
+                1 => Some(Lens::Fov(rng.range(1e-3, 179.9))),
+                _ => Some(Lens::Pinhole(crate::scene::Intrinsics {
+                    fx: rng.log(-3.0, 5.0),
+                    fy: rng.log(-3.0, 5.0),
+                    cx: x(&mut rng),
+                    cy: x(&mut rng),
+                })),
+            };
+            let c = CameraSpec {
+                eye: v(&mut rng),
+                look: v(&mut rng),
+                up: v(&mut rng),
+                lens,
+            };
+            if crate::scene::validate::camera(&c).is_ok() {
+                cams.push(c);
+            }
+        }
+        let text = write_views(&cams, "made by a test\nsecond line");
+        let back = parse_views(&text, Path::new("v.txt")).unwrap();
+        assert_eq!(back.len(), cams.len());
+        for (a, b) in back.iter().zip(&cams) {
+            assert_eq!(format!("{:?}", a.camera), format!("{b:?}"));
+            assert_eq!(a.camera, *b);
         }
     }
 }

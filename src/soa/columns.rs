@@ -412,7 +412,7 @@ mod tests {
                 eye: DVec3::new(0.0, 0.0, 5.0),
                 look: DVec3::ZERO,
                 up: DVec3::Y,
-                fov_deg: None,
+                lens: None,
             },
             shapes: vec![
                 Shape::Triangle([DVec3::X, DVec3::Y, DVec3::ZERO]),

@@ -21,11 +21,15 @@ pub struct View {
     basis: Basis,
     half_w: f32,
     half_h: f32,
+    /// The principal point in half images, `(2cx/W, 2cy/H)`: (1, 1) for a field of view.
+    principal: (f32, f32),
     /// Pixels of box margin: the projection's rounding and the widest edge tolerance.
     margin: f32,
 }
 
-/// Pixels of box margin for the projection's rounding (a few u of the image's size).
+/// Pixels of box margin for the projection's rounding (a few u of the image's size), for a
+/// centred principal point; it grows with the principal point's distance from the centre
+/// (`View::new`), as the projection's intermediate `sx / half_w + 2cx/W` does.
 const MARGIN_PX: f64 = 0.01;
 
 /// Cosine (of a vertex's angle to the view axis) below which a polygon is boxed to the whole
@@ -37,9 +41,18 @@ impl View {
     pub fn new(camera: &Camera) -> View {
         let t32 = camera.tables::<f32>(1, 1);
         let t64 = camera.tables::<f64>(1, 1);
-        let lmax = (1.0 + camera.half_w * camera.half_w + camera.half_h * camera.half_h).sqrt();
-        // pixels per radian, at most: d(sx)/d(angle) <= 1 + sx^2 <= lmax^2
-        let px_per_rad = camera.width as f64 / (2.0 * camera.half_w) * lmax * lmax;
+        let (sx, sy) = camera.screen_reach();
+        let lmax = (1.0 + sx * sx + sy * sy).sqrt();
+        // pixels per radian, at most: d(sx)/d(angle) <= 1 + sx^2 <= lmax^2, times the larger
+        // focal length (fx = fy for a field of view)
+        let focal = (camera.width as f64 / (2.0 * camera.half_w))
+            .max(camera.height as f64 / (2.0 * camera.half_h));
+        let px_per_rad = focal * lmax * lmax;
+        let (px, py) = camera.principal();
+        // the projection's largest intermediate, in half images: 1 for a centred point
+        let span = [px, 2.0 - px, py, 2.0 - py]
+            .iter()
+            .fold(1.0f64, |m, v| m.max(v.abs()));
         View {
             eye: camera.eye,
             w: camera.width as usize,
@@ -54,7 +67,8 @@ impl View {
             t64,
             half_w: camera.half_w as f32,
             half_h: camera.half_h as f32,
-            margin: (MARGIN_PX + EPS_MAX * lmax * px_per_rad) as f32,
+            principal: (px as f32, py as f32),
+            margin: (MARGIN_PX * span + EPS_MAX * lmax * px_per_rad) as f32,
         }
     }
 
@@ -70,8 +84,9 @@ impl View {
         let len = setup::dot(r, r).sqrt();
         let sx = setup::dot(r, b.r) / z;
         let sy = setup::dot(r, b.u) / z;
-        let px = (sx / self.half_w + 1.0) * (self.w as f32 * 0.5) - 0.5;
-        let py = (1.0 - sy / self.half_h) * (self.h as f32 * 0.5) - 0.5;
+        let (cx, cy) = self.principal;
+        let px = (sx / self.half_w + cx) * (self.w as f32 * 0.5) - 0.5;
+        let py = (cy - sy / self.half_h) * (self.h as f32 * 0.5) - 0.5;
         [px, py, z / len]
     }
 
@@ -210,8 +225,9 @@ impl View {
         let (sx0, sx1) = range(x);
         let (sy0, sy1) = range(y);
         let (hw, hh) = (self.half_w as f64, self.half_h as f64);
-        let px = |sx: f64| ((sx / hw + 1.0) * self.w as f64 * 0.5 - 0.5) as f32;
-        let py = |sy: f64| ((1.0 - sy / hh) * self.h as f64 * 0.5 - 0.5) as f32;
+        let (cx, cy) = (self.principal.0 as f64, self.principal.1 as f64);
+        let px = |sx: f64| ((sx / hw + cx) * self.w as f64 * 0.5 - 0.5) as f32;
+        let py = |sy: f64| ((cy - sy / hh) * self.h as f64 * 0.5 - 0.5) as f32;
         self.clip(px(sx0), px(sx1), py(sy1), py(sy0))
     }
 }

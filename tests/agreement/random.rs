@@ -81,6 +81,30 @@ fn random_quads_far_from_the_origin_agree() {
     random_cases("quads", quads, true);
 }
 
+/// Cameras as rigs give them (`K`: `fy != fx`, the principal point off the centre), mixed
+/// scenes near the origin and far from it.
+#[test]
+fn random_pinhole_cameras_agree() {
+    for seed in 1..=6u64 {
+        let mut rng = Rng::new(seed * 31_337);
+        let spec = random_camera(&mut rng);
+        let spec = random_pinhole(&mut rng, spec, RANDOM_W, RANDOM_H);
+        let shapes = mixed(&mut rng);
+        let scene = build_scene(&format!("pinhole{seed}.sc"), spec, &shapes);
+        let name = format!("random pinhole #{seed}");
+        check(&name, &scene, RANDOM_W, RANDOM_H, Mesh::Loose, 0.02);
+        let far = translated(&scene, FAR);
+        check(
+            &format!("{name} far"),
+            &far,
+            RANDOM_W,
+            RANDOM_H,
+            Mesh::Loose,
+            0.02,
+        );
+    }
+}
+
 #[test]
 fn random_mixed_scenes_agree() {
     random_cases("mixed", mixed, false);

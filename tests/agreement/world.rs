@@ -80,6 +80,29 @@ fn world_random_mixed_scenes_agree_with_the_oracle() {
     });
 }
 
+/// `--accel world` with cameras as rigs give them (`K`: `fy != fx`, the principal point off
+/// the centre), in every precision, near the origin and far from it.
+#[test]
+fn world_random_pinholes_agree_with_the_oracle() {
+    for seed in 1..=6u64 {
+        let mut rng = Rng::new(seed * 7_777);
+        let spec = random_camera(&mut rng);
+        let spec = random_pinhole(&mut rng, spec, W, H);
+        let mut shapes = random_spheres(&mut rng, 10);
+        shapes.extend(random_triangles(&mut rng, 15));
+        shapes.extend(random_quads(&mut rng, 15));
+        let scene = build_scene(&format!("world-pinhole-{seed}.sc"), spec, &shapes);
+        for precision in [Precision::Auto, Precision::F64, Precision::F32] {
+            world_check(&format!("pinhole #{seed}"), scene.clone(), precision);
+        }
+        world_check(
+            &format!("pinhole #{seed} far"),
+            translated(&scene, FAR),
+            Precision::Auto,
+        );
+    }
+}
+
 #[test]
 fn world_seed_scenes_agree_with_the_oracle() {
     for (name, scene) in seed_scenes() {

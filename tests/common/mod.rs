@@ -220,12 +220,31 @@ pub fn shape_line(s: &Shape) -> String {
 
 /// Scene text for `camera` and `shapes`.
 pub fn scene_text(camera: &CameraSpec, shapes: &[Shape]) -> String {
-    let mut t = camera_line(
-        camera.eye,
-        camera.look,
-        camera.up,
-        camera.fov_deg.unwrap_or(60.0),
-    );
+    let mut t = match camera.lens {
+        // the scene file's own words, every number in full (`{:?}` round-trips)
+        Some(lanecast::Lens::Pinhole(k)) => format!(
+            "camera eye {:?} {:?} {:?} look {:?} {:?} {:?} up {:?} {:?} {:?} K {:?} {:?} {:?} {:?}\n",
+            camera.eye.x,
+            camera.eye.y,
+            camera.eye.z,
+            camera.look.x,
+            camera.look.y,
+            camera.look.z,
+            camera.up.x,
+            camera.up.y,
+            camera.up.z,
+            k.fx,
+            k.fy,
+            k.cx,
+            k.cy
+        ),
+        _ => camera_line(
+            camera.eye,
+            camera.look,
+            camera.up,
+            camera.fov_deg().unwrap_or(60.0),
+        ),
+    };
     for s in shapes {
         t += &shape_line(s);
     }
@@ -268,9 +287,28 @@ pub fn translated(scene: &Scene, by: DVec3) -> Scene {
 /// The offset of the "far from the origin" variants.
 pub const FAR: DVec3 = DVec3::new(1000.0, -1000.0, 1000.0);
 
-/// The camera of `scene` at `w` x `h`, with the scene's fov or 60 degrees.
+/// The camera of `scene` at `w` x `h`, with the scene's lens (fov or intrinsics) or 60 degrees.
 pub fn camera_of(scene: &Scene, w: u32, h: u32) -> Camera {
-    Camera::new(&scene.camera, scene.camera.fov_deg.unwrap_or(60.0), w, h)
+    Camera::look_at(&scene.camera, w, h).expect("a test scene's camera is valid")
+}
+
+/// `spec` as a pinhole for `w` x `h` images, as a rig's calibration gives one: its field of
+/// view's focal length along x, `fy` within 0.7 to 1.4 times `fx`, and the principal point up
+/// to 0.3 image sizes off the centre (farther turns the random scenes mostly out of view;
+/// `camera`'s and `accel::reach`'s tests take principal points far off the image).
+pub fn random_pinhole(rng: &mut Rng, spec: CameraSpec, w: u32, h: u32) -> CameraSpec {
+    let fov = spec.fov_deg().unwrap_or(60.0);
+    let fx = w as f64 / (2.0 * (fov.to_radians() / 2.0).tan());
+    let k = lanecast::Intrinsics {
+        fx,
+        fy: fx * 2f64.powf(rng.range(-0.5, 0.5)),
+        cx: w as f64 * (0.5 + rng.range(-0.3, 0.3)),
+        cy: h as f64 * (0.5 + rng.range(-0.3, 0.3)),
+    };
+    CameraSpec {
+        lens: Some(lanecast::Lens::Pinhole(k)),
+        ..spec
+    }
 }
 
 pub fn spec(eye: DVec3, look: DVec3, up: DVec3, fov: f64) -> CameraSpec {
@@ -278,7 +316,7 @@ pub fn spec(eye: DVec3, look: DVec3, up: DVec3, fov: f64) -> CameraSpec {
         eye,
         look,
         up,
-        fov_deg: Some(fov),
+        lens: Some(lanecast::Lens::Fov(fov)),
     }
 }
 

@@ -172,6 +172,123 @@ fn an_orbit_is_the_views_file_of_its_cameras() {
     assert!(!dir.join("o7.npy").exists());
 }
 
+/// `--orbit N --save-views FILE` writes the views file of its cameras: `--views FILE` renders
+/// the same ids and depths, byte for byte; `--stats` records every view's camera, K,
+/// world-to-camera matrix and outputs, for the orbit and for a rig's views file alike.
+#[test]
+fn an_orbit_saved_as_a_views_file_renders_again_bit_for_bit() {
+    let dir = TempDir::new("views-save");
+    let scene = seed_scene(1);
+    let scene = scene.to_str().unwrap();
+    let common = ["-i", scene, "-size", "96x64", "-fov", "37.3"];
+    let mut orbit_args = common.to_vec();
+    orbit_args.extend([
+        "--orbit",
+        "5",
+        "-o",
+        "o%d.png",
+        "--ids",
+        "o%d.npy",
+        "--depth",
+        "od%d.npy",
+        "--save-views",
+        "v.txt",
+        "--stats",
+        "o.json",
+    ]);
+    assert_success(&run(&dir.path, &orbit_args), "orbit");
+    let mut views_args = common.to_vec();
+    views_args.extend([
+        "--views", "v.txt", "-o", "v%d.png", "--ids", "v%d.npy", "--depth", "vd%d.npy", "--stats",
+        "v.json",
+    ]);
+    assert_success(&run(&dir.path, &views_args), "views");
+    for k in 0..5 {
+        for (a, b) in [("o", "v"), ("od", "vd")] {
+            let (a, b) = (format!("{a}{k}.npy"), format!("{b}{k}.npy"));
+            assert!(
+                read(&dir.join(&a)) == read(&dir.join(&b)),
+                "{a} against {b}"
+            );
+        }
+    }
+    let json = |name: &str| -> serde_json::Value {
+        serde_json::from_slice(&read(&dir.join(name))).unwrap()
+    };
+    let (o, v) = (json("o.json"), json("v.json"));
+    let views = o["views"].as_array().unwrap();
+    assert_eq!(views.len(), 5);
+    for (k, view) in views.iter().enumerate() {
+        // the same camera, K and matrix whichever way the views came
+        for key in ["camera", "K", "world_to_camera"] {
+            assert_eq!(view[key], v["views"][k][key], "view {k}: {key}");
+        }
+        assert_eq!(view["camera"]["fov"], 37.3);
+        assert_eq!(view["outputs"]["ids"], format!("o{k}.npy"));
+        assert_eq!(view["outputs"]["depth"], format!("od{k}.npy"));
+        let f = 96.0 / (2.0 * (37.3f64.to_radians() / 2.0).tan());
+        let km = &view["K"];
+        assert!((km[0][0].as_f64().unwrap() / f - 1.0).abs() < 1e-12, "{km}");
+        assert_eq!(
+            (km[0][2].as_f64(), km[1][2].as_f64()),
+            (Some(48.0), Some(32.0))
+        );
+        assert_eq!(km[2], serde_json::json!([0.0, 0.0, 1.0]));
+        // the matrix takes the eye to the origin and the look point onto +z
+        let m = &view["world_to_camera"];
+        let apply = |p: &serde_json::Value| -> [f64; 3] {
+            std::array::from_fn(|i| {
+                (0..3)
+                    .map(|j| m[i][j].as_f64().unwrap() * p[j].as_f64().unwrap())
+                    .sum::<f64>()
+                    + m[i][3].as_f64().unwrap()
+            })
+        };
+        let eye = apply(&view["camera"]["eye"]);
+        assert!(eye.iter().all(|c| c.abs() < 1e-9), "{eye:?}");
+        let look = apply(&view["camera"]["look"]);
+        assert!(
+            look[0].abs() < 1e-9 && look[1].abs() < 1e-9 && look[2] > 0.0,
+            "{look:?}"
+        );
+        assert_eq!(m[3], serde_json::json!([0.0, 0.0, 0.0, 1.0]));
+    }
+    // a rig's views: K as given, the matrix as given (to rounding)
+    dir.write(
+        "rig.txt",
+        "extrinsic 1 0 0 0  0 -1 0 0  0 0 -1 9  0 0 0 1 K 70.5 81.25 40.75 20.5\n",
+    );
+    let o = run(
+        &dir.path,
+        &[
+            "-i", scene, "-size", "96x64", "--views", "rig.txt", "-o", "r%d.png", "--stats",
+            "r.json",
+        ],
+    );
+    assert_success(&o, "rig");
+    let r = json("r.json");
+    let view = &r["views"][0];
+    assert_eq!(
+        view["K"],
+        serde_json::json!([[70.5, 0.0, 40.75], [0.0, 81.25, 20.5], [0.0, 0.0, 1.0]])
+    );
+    assert_eq!(
+        view["camera"]["K"],
+        serde_json::json!({"fx": 70.5, "fy": 81.25, "cx": 40.75, "cy": 20.5})
+    );
+    let want = [
+        [1.0, 0.0, 0.0, 0.0],
+        [0.0, -1.0, 0.0, 0.0],
+        [0.0, 0.0, -1.0, 9.0],
+    ];
+    for (i, row) in want.iter().enumerate() {
+        for (j, &x) in row.iter().enumerate() {
+            let got = view["world_to_camera"][i][j].as_f64().unwrap();
+            assert!((got - x).abs() < 1e-12, "{i},{j}: {got}");
+        }
+    }
+}
+
 #[test]
 fn standard_output_carries_one_image_per_view() {
     let dir = TempDir::new("views-stdout");

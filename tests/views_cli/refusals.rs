@@ -21,6 +21,28 @@ fn bad_views_and_patterns_are_refused_before_anything_is_written() {
         "camera eye 0 2 9 look 0 0 0 up 0 1 0\ncamera eye 0 9 0 look 0 0 0 up 0 1 0\n",
     );
     dir.write("shape.txt", "sphere 0 0 0 1\n");
+    // a focal length that is not positive; a principal point past the limits for 64x48
+    // (`limits::MAX_PRINCIPAL_OFFSET` image widths); a matrix that scales; one that reflects
+    dir.write(
+        "k.txt",
+        "camera eye 0 2 9 look 0 0 0 up 0 1 0 K 50 50 32 24\ncamera eye 0 2 9 look 0 0 0 up 0 1 0 K 0 50 32 24\n",
+    );
+    dir.write(
+        "far.txt",
+        "camera eye 0 2 9 look 0 0 0 up 0 1 0 K 50 50 1e6 24\n",
+    );
+    dir.write(
+        "scaled.txt",
+        "extrinsic 1.01 0 0 0 0 1 0 0 0 0 1 9 0 0 0 1 K 50 50 32 24\n",
+    );
+    dir.write(
+        "mirror.txt",
+        "\n  extrinsic -1 0 0 0 0 1 0 0 0 0 1 9 0 0 0 1 K 50 50 32 24\n",
+    );
+    dir.write(
+        "row.txt",
+        "extrinsic 1 0 0 0 0 1 0 0 0 0 1 9 0 0 1 1 K 50 50 32 24\n",
+    );
     let cases: &[(&[&str], &str)] = &[
         (&["--views", "bad.txt", "-o", "f%d.png"], "bad.txt:3:16:"),
         (
@@ -100,6 +122,63 @@ fn bad_views_and_patterns_are_refused_before_anything_is_written() {
         (
             &["--orbit", "2", "-o", "f%d.png", "-fov", "180"],
             "field of view",
+        ),
+        (
+            &["--views", "k.txt", "-o", "f%d.png"],
+            "k.txt:2:40: focal length fx = 0 pixels",
+        ),
+        (
+            &["--views", "far.txt", "-o", "f%d.png", "-size", "64x48"],
+            "far.txt:1:1: camera: principal point cx = 1000000",
+        ),
+        (
+            &["--views", "scaled.txt", "-o", "f%d.png"],
+            "scaled.txt:1:1: the world-to-camera matrix is not a rigid transform",
+        ),
+        (
+            &["--views", "mirror.txt", "-o", "f%d.png"],
+            "mirror.txt:2:3: the world-to-camera matrix's 3x3 rotation has determinant -1",
+        ),
+        (
+            &["--views", "row.txt", "-o", "f%d.png"],
+            "row.txt:1:1: the world-to-camera matrix's last row must be 0 0 0 1",
+        ),
+        // --save-views: never over a file the run reads or writes, only with --orbit
+        (
+            &["--orbit", "3", "-o", "f%d.png", "--save-views", scene],
+            "is the input scene; refusing to overwrite it",
+        ),
+        (
+            &["--orbit", "3", "-o", "f%d.png", "--save-views", "f2.png"],
+            "--save-views f2.png: the run also writes f2.png",
+        ),
+        (
+            &[
+                "--orbit",
+                "3",
+                "-o",
+                "f%d.png",
+                "--stats",
+                "s.json",
+                "--save-views",
+                "s.json",
+            ],
+            "--save-views s.json: the run also writes s.json",
+        ),
+        (
+            &[
+                "--views",
+                "good.txt",
+                "-o",
+                "f%d.png",
+                "--save-views",
+                "v.txt",
+            ],
+            "--save-views v.txt: writes the cameras of --orbit N",
+        ),
+        (
+            &["-o", "f.png", "--save-views", "v.txt"],
+            "--save-views v.txt: writes the cameras of --orbit N",
         ),
     ];
     let before = dir.entries();

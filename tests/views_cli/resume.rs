@@ -42,12 +42,20 @@ fn skip_existing_renders_only_missing_views() {
     let again = args(&["--skip-existing"]);
     assert_success(&run(&dir.path, &as_refs(&again)), "rerun");
     let stats: serde_json::Value = serde_json::from_slice(&read(&dir.join("s.json"))).unwrap();
-    assert_eq!(stats["views"]["rendered"], 2);
-    assert_eq!(stats["views"]["skipped"], 3);
+    assert_eq!(stats["views_summary"]["rendered"], 2);
+    assert_eq!(stats["views_summary"]["skipped"], 3);
     // each rendered view records what it left out and how many renders it took; the first
     // view of a run has nothing to guess from and leaves nothing out
-    let each = stats["views"]["each"].as_array().unwrap();
+    let views = stats["views"].as_array().unwrap();
+    assert_eq!(views.len(), 5);
+    let each: Vec<_> = views.iter().filter(|v| v["skipped"] == false).collect();
     assert_eq!(each.len(), 2);
+    assert!(
+        views
+            .iter()
+            .filter(|v| v["skipped"] == true)
+            .all(|v| v["render_s"].is_null())
+    );
     assert_eq!(
         (each[0]["left_out"].as_u64(), each[0]["renders"].as_u64()),
         (Some(0), Some(1))
@@ -251,8 +259,8 @@ fn skip_existing_renders_views_whose_files_are_truncated_or_empty() {
         let stats: serde_json::Value = serde_json::from_slice(&read(&dir.join("s.json"))).unwrap();
         assert_eq!(
             (
-                stats["views"]["rendered"].as_u64(),
-                stats["views"]["skipped"].as_u64()
+                stats["views_summary"]["rendered"].as_u64(),
+                stats["views_summary"]["skipped"].as_u64()
             ),
             (Some(5), Some(1)),
             "{ext}: views 0-4 had a broken file, view 5 was whole"
@@ -286,8 +294,8 @@ fn time_says_no_view_rendered_when_every_view_was_skipped() {
         assert!(!err.contains(bad), "{bad} in: {err}");
     }
     let stats: serde_json::Value = serde_json::from_slice(&read(&dir.join("s.json"))).unwrap();
-    assert_eq!(stats["views"]["rendered"], 0);
-    assert_eq!(stats["views"]["skipped"], 3);
+    assert_eq!(stats["views_summary"]["rendered"], 0);
+    assert_eq!(stats["views_summary"]["skipped"], 3);
     assert!(stats["rays_per_s"].is_null(), "no render, no rate");
 }
 

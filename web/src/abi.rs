@@ -140,14 +140,12 @@ pub unsafe extern "C" fn lc_render(width: u32, height: u32, camera: *const f64) 
             eye: v(0),
             look: v(3),
             up: v(6),
-            fov_deg: (!c[9].is_nan()).then_some(c[9]),
+            lens: (!c[9].is_nan()).then_some(lanecast::Lens::Fov(c[9])),
         }
     });
     with(|s| {
         let spec = spec.map(|sp| CameraSpec {
-            fov_deg: sp
-                .fov_deg
-                .or_else(|| s.loaded.as_ref()?.scene().camera.fov_deg),
+            lens: sp.lens.or_else(|| s.loaded.as_ref()?.scene().camera.lens),
             ..sp
         });
         match s.render(width, height, spec) {

@@ -39,7 +39,7 @@ pub fn scene_json(loaded: &Loaded) -> String {
     let s = loaded.scene();
     let c = s.camera;
     let v = |v: glam::DVec3| format!("[{},{},{}]", v.x, v.y, v.z);
-    let fov = c.fov_deg.map_or("null".to_string(), |f| f.to_string());
+    let fov = c.fov_deg().map_or("null".to_string(), |f| f.to_string());
     let (spheres, triangles, quads) = s.counts();
     let mut warnings = String::new();
     for (k, w) in s.warnings.iter().enumerate() {

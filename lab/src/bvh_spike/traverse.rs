@@ -373,7 +373,7 @@ mod tests {
                 eye,
                 look: DVec3::new(r.f() - 0.5, r.f() - 0.5, r.f() - 0.5),
                 up: DVec3::Y,
-                fov_deg: Some(20.0 + r.f() * 70.0),
+                lens: Some(lanecast::scene::Lens::Fov(20.0 + r.f() * 70.0)),
             };
             let (w, h) = (40 + (r.f() * 60.0) as u32, 30 + (r.f() * 50.0) as u32);
             let camera = Camera::look_at(&spec, w, h).unwrap();

@@ -12,28 +12,23 @@ pub(crate) struct Region {
 }
 
 impl Region {
-    /// The whole image: `|sx| <= half_w`, `|sy| <= half_h`.
-    pub(super) fn image(half_w: f64, half_h: f64) -> Region {
+    /// The whole image, `[left, right, bottom, top]` in screen coordinates
+    /// (`Camera::screen`).
+    pub(super) fn image([l, r, b, t]: [f64; 4]) -> Region {
         let mut v = [[0.0; 2]; MAX_VERTICES];
-        v[..4].copy_from_slice(&[
-            [-half_w, -half_h],
-            [half_w, -half_h],
-            [half_w, half_h],
-            [-half_w, half_h],
-        ]);
+        v[..4].copy_from_slice(&[[l, b], [r, b], [r, t], [l, t]]);
         Region { v, n: 4 }
     }
 
     /// The polygon where the half-planes `a sx + b sy + c >= 0` of `lines` (in order around
     /// it) meet, when each two consecutive lines cross at an angle over 1e-3 rad at a point
-    /// that every half-plane holds and that lies inside the image (`|sx| <= half_w`,
-    /// `|sy| <= half_h`): the region is then that polygon, whose corners are those points (a
+    /// that every half-plane holds and that lies inside the image (`screen`, as
+    /// [`Region::image`]): the region is then that polygon, whose corners are those points (a
     /// bounded intersection of `N` half-planes with `N` distinct corners on consecutive lines
     /// has no other). `None` otherwise: the caller clips the image instead.
     pub(super) fn corners<const N: usize>(
         lines: &[[f64; 3]; N],
-        half_w: f64,
-        half_h: f64,
+        [l, r, b, t]: [f64; 4],
     ) -> Option<Region> {
         let mut v = [[0.0; 2]; MAX_VERTICES];
         for i in 0..N {
@@ -47,7 +42,8 @@ impl Region {
             let holds = lines
                 .iter()
                 .all(|&[a, b, c]| a * p[0] + b * p[1] + c >= -1e-9 * (c.abs() + 1e-300));
-            if !holds || p[0].abs() > half_w || p[1].abs() > half_h {
+            let inside = l <= p[0] && p[0] <= r && b <= p[1] && p[1] <= t;
+            if !(holds && inside) {
                 return None;
             }
             v[i] = p;

@@ -14,7 +14,9 @@ use crate::test_rng::Rng;
 
 /// A random camera at `eye` looking at `look`: fov log-uniform in [1e-4, 179.9] degrees,
 /// width and height from 1 to `limits::MAX_SIDE` (within `limits::MAX_PIXELS`), up vector
-/// random or within 1e-8 to 1e-2 rad of the view direction.
+/// random or within 1e-8 to 1e-2 rad of the view direction; a third of them pinholes of that
+/// horizontal focal length with `fy` 0.5 to 2 times `fx` and the principal point up to two
+/// image sizes off the centre.
 fn camera(rng: &mut Rng, eye: DVec3, look: DVec3) -> Camera {
     let fov = rng.log(-4.0, 179.9f64.log10());
     camera_with(rng, eye, look, |_| fov)
@@ -38,8 +40,20 @@ fn camera_with(rng: &mut Rng, eye: DVec3, look: DVec3, fov: impl Fn(u32) -> f64)
         eye,
         look,
         up,
-        fov_deg: Some(fov),
+        lens: Some(crate::scene::Lens::Fov(fov)),
     };
+    if rng.unit() < 1.0 / 3.0 {
+        let fx = w as f64 / (2.0 * (fov.to_radians() / 2.0).tan());
+        let k = crate::scene::Intrinsics {
+            fx,
+            fy: fx * rng.log(-0.3, 0.3),
+            cx: w as f64 * (0.5 + rng.range(-2.0, 2.0)),
+            cy: h as f64 * (0.5 + rng.range(-2.0, 2.0)),
+        };
+        if crate::limits::check_lens(k.fx, k.fy, k.cx, k.cy, w, h).is_ok() {
+            return Camera::pinhole(&spec, &k, w, h);
+        }
+    }
     Camera::new(&spec, fov, w, h)
 }
 
@@ -89,9 +103,9 @@ fn accepted_rays_lie_within_the_edge_bound() {
                 let off = -d64(n32).dot(d);
                 assert!(
                     off <= view.edge,
-                    "{off:e} > E {:e}: fov {}, {}x{}, ({x}, {y})",
+                    "{off:e} > E {:e}: {:?}, {}x{}, ({x}, {y})",
                     view.edge,
-                    cam.half_w.atan().to_degrees() * 2.0,
+                    cam.k,
                     cam.width,
                     cam.height
                 );
@@ -143,7 +157,7 @@ fn one_shape(shape: Shape, eye: DVec3, look: DVec3) -> Scene {
             eye,
             look,
             up: DVec3::Y,
-            fov_deg: None,
+            lens: None,
         },
         shapes: vec![shape].into(),
         warnings: Vec::new(),
@@ -202,12 +216,7 @@ fn check_pixels(
     for (x, y) in window(cam) {
         let (d32, d) = (t32.dir_x1(x, y), t64.dir_x1(x, y));
         let (h32, h64) = hits(d32, d);
-        let at = format!(
-            "({x}, {y}) of {}x{}, fov {:e}",
-            cam.width,
-            cam.height,
-            cam.half_w.atan().to_degrees() * 2.0
-        );
+        let at = format!("({x}, {y}) of {}x{}, {:?}", cam.width, cam.height, cam.k);
         for t in [h32.map(f64::from), h64].into_iter().flatten() {
             if let Some(region) = region {
                 assert!(

@@ -220,7 +220,7 @@ mod tests {
             eye,
             look,
             up: DVec3::new(0.1, 1.0, 0.05),
-            fov_deg: None,
+            lens: None,
         };
         Camera::new(&spec, fov, 200, 150)
     }

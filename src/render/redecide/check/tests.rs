@@ -25,7 +25,7 @@ fn packets_left_unmarked_have_no_lane_beyond_its_trusted_distance() {
     let (mut unmarked_hits, mut marked_beyond) = (0, 0);
     for path in &paths {
         let scene = crate::scene::load_scene(path).expect("a seed or stress scene");
-        let fov = scene.camera.fov_deg.unwrap_or(60.0);
+        let fov = scene.camera.fov_deg().unwrap_or(60.0);
         let (w, h): (usize, usize) = (200, 120);
         let camera = Camera::new(&scene.camera, fov, w as u32, h as u32);
         let mut p = PacketScene::new(&scene, &camera, Accel::Tiles);

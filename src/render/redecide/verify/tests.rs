@@ -33,7 +33,7 @@ fn grazing_scene() -> (Scene, Camera) {
             eye: DVec3::ZERO,
             look: v(0.0, 0.0, -1.0),
             up: DVec3::Y,
-            fov_deg: None,
+            lens: None,
         },
         shapes,
         warnings: Vec::new(),
