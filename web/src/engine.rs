@@ -36,9 +36,10 @@ impl Engine {
 ///   40 against 67 ms, the twice-subdivided teapot (15,872) 83 against 142, the armadillo
 ///   (52,000) 165 against 127, the 832k armadillo 1084 against 334. Orbit costs alone meet near
 ///   one primitive for 32 pixels.
-/// - Close up (the eye at a tenth of the scene's distance or nearer, as the page's zoom allows),
-///   the world engine's frames take 40-60 times the per-eye path's: the armadillo 110 against
-///   6,060 ms, the 832k armadillo 916 against 23,090 ms at 1280x720.
+/// - Close up (the eye at a tenth of the scene's distance, as the page's zoom allows), the world
+///   engine boxes the polygons reaching behind the eye plane from their visible part: on the
+///   command line (2 threads, 1280x720) the armadillo takes 0.08 s by it against 0.05 s by the
+///   per-eye path (docs/performance.md, "`--accel world` against Embree").
 ///
 /// So the world engine is chosen only where its orbit gain is large (3x at 0.9 primitives a
 /// pixel, the 832k armadillo at 1280x720) and not where it is within the noise (1.1-1.3x at
