@@ -12,6 +12,7 @@ import numpy.typing as npt
 _Path = Union[str, bytes, "os.PathLike[str]", "os.PathLike[bytes]"]
 _Vec3 = Union[npt.ArrayLike, tuple[float, float, float]]
 _Precision = Literal["auto", "f32", "f64"]
+_Accel = Literal["auto", "world"]
 _Int = SupportsIndex
 
 __all__ = ["Camera", "MAX_SIDE", "MAX_THREADS", "RIGID_TOL", "Render", "Scene",
@@ -93,11 +94,11 @@ class Scene:
     def render(self, camera: Camera | None = None, width: _Int | None = None,
                height: _Int | None = None, precision: _Precision = "auto",
                threads: _Int | None = None, zdepth: bool = False,
-               normals: bool = False) -> Render: ...
+               normals: bool = False, accel: _Accel = "auto") -> Render: ...
     def render_views(self, cameras: Iterable[Camera], width: _Int | None = None,
                      height: _Int | None = None, precision: _Precision = "auto",
                      threads: _Int | None = None, zdepth: bool = False,
-                     normals: bool = False) -> Render: ...
+                     normals: bool = False, accel: _Accel = "auto") -> Render: ...
     def _state(self) -> tuple[Any, ...]: ...
     @staticmethod
     def _from_state(state: tuple[Any, ...]) -> Scene: ...

@@ -5,12 +5,16 @@ use crate::args;
 use crate::errors::{py_err, scene_error_class, value_error};
 use crate::scene::Prepared;
 use crate::threads::run;
+use lanecast::Frame;
+use lanecast::scene::RangeClusters;
+use lanecast::world::{self, World};
 use lanecast::{ColorMode, Variation};
 use numpy::ndarray::{ArrayD, IxDyn};
 use numpy::{IntoPyArray, PyReadonlyArray1};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
+use std::sync::Arc;
 
 /// A render's buffers: `ids` and `depth`, (H, W) for one view or (V, H, W) for a batch, and
 /// `zdepth` and `normals` when the render asked for them.
@@ -136,20 +140,74 @@ impl Render {
     }
 }
 
+/// What renders a scene's views: its per-eye views (`accel="auto"`), or the world engine's
+/// prepared scene (`accel="world"`), held directly, with the range check's cluster bounds.
+pub(crate) enum Engine {
+    Views(Arc<Prepared>),
+    World {
+        scene: Arc<lanecast::Scene>,
+        world: Arc<World>,
+        range: Arc<RangeClusters>,
+        precision: world::Precision,
+    },
+}
+
+impl Engine {
+    /// Runs `f` with a renderer of single views (`cam`, the spare frame to fill) and the scene.
+    fn with<R>(
+        &self,
+        f: impl FnOnce(
+            &mut dyn FnMut(
+                &lanecast::Camera,
+                Option<Frame<f32>>,
+            ) -> Result<Frame<f32>, lanecast::Error>,
+            &lanecast::Scene,
+        ) -> R,
+    ) -> R {
+        match self {
+            Engine::Views(prepared) => prepared.with_dependent(|_, views| {
+                let mut one = |cam: &lanecast::Camera, spare: Option<Frame<f32>>| {
+                    if let Some(spare) = spare {
+                        views.recycle(spare);
+                    }
+                    views.render(cam)
+                };
+                f(&mut one, views.scene())
+            }),
+            Engine::World {
+                scene,
+                world,
+                range,
+                precision,
+            } => {
+                let mut scratch = world::Scratch::default();
+                let mut one = |cam: &lanecast::Camera, spare: Option<Frame<f32>>| {
+                    // the command line's f32 range check of the scene from this eye
+                    if cam.eye != scene.camera.eye {
+                        range.check(scene, cam.eye)?;
+                    }
+                    Ok(world.render_marking(cam, *precision, &mut scratch, spare).0)
+                };
+                f(&mut one, scene)
+            }
+        }
+    }
+}
+
 /// One view from `prepared` through `cam`, the GIL released on `threads` threads: the
 /// library's ids and depth buffers moved into numpy without a copy, and the extras asked for.
 pub(crate) fn one(
     py: Python<'_>,
-    prepared: &Prepared,
+    engine: &Engine,
     cam: &lanecast::Camera,
     threads: Option<usize>,
     extras: Extras,
 ) -> PyResult<Render> {
     let (frame, z, n) = run(py, threads, || {
-        prepared.with_dependent(|_, views| {
-            let frame = views.render(cam)?;
+        engine.with(|render, scene| {
+            let frame = render(cam, None)?;
             let z = extras.zdepth.then(|| frame.z_depth(cam));
-            let n = extras.normals.then(|| frame.normals(views.scene(), cam));
+            let n = extras.normals.then(|| frame.normals(scene, cam));
             Ok::<_, lanecast::Error>((frame, z, n))
         })
     })?
@@ -172,7 +230,7 @@ pub(crate) fn one(
 /// (V, H, W) arrays; an error names the camera it came from.
 pub(crate) fn views(
     py: Python<'_>,
-    prepared: &Prepared,
+    engine: &Engine,
     cams: &[lanecast::Camera],
     (w, h): (usize, usize),
     threads: Option<usize>,
@@ -181,22 +239,23 @@ pub(crate) fn views(
     let n = w * h;
     let room = |on: bool, per: usize| if on { cams.len() * per } else { 0 };
     let out = run(py, threads, || {
-        prepared.with_dependent(|_, views| {
+        engine.with(|render, scene| {
             let mut ids = Vec::with_capacity(cams.len() * n);
             let mut depth = Vec::with_capacity(cams.len() * n);
             let mut zd = Vec::with_capacity(room(extras.zdepth, n));
             let mut nd: Vec<[f32; 3]> = Vec::with_capacity(room(extras.normals, n));
+            let mut spare = None;
             for (v, cam) in cams.iter().enumerate() {
-                let frame = views.render(cam).map_err(|e| (v, e))?;
+                let frame = render(cam, spare.take()).map_err(|e| (v, e))?;
                 ids.extend_from_slice(&frame.ids);
                 depth.extend_from_slice(&frame.depth);
                 if extras.zdepth {
                     zd.extend(frame.z_depth(cam));
                 }
                 if extras.normals {
-                    nd.extend(frame.normals(views.scene(), cam));
+                    nd.extend(frame.normals(scene, cam));
                 }
-                views.recycle(frame);
+                spare = Some(frame);
             }
             Ok::<_, (usize, lanecast::Error)>((ids, depth, zd, nd))
         })

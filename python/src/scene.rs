@@ -6,14 +6,16 @@ use crate::arrays::{float_rows, index_rows};
 use crate::camera::{PyCamera, camera_arg, cameras_arg};
 use crate::errors::{py_err, value_error};
 use crate::pickle::{self, SceneState};
-use crate::render::{self, Extras, Render};
+use crate::render::{self, Engine, Extras, Render};
 use crate::threads::run;
+use lanecast::scene::RangeClusters;
+use lanecast::world::{self, World};
 use lanecast::{CameraSpec, Method, Options, Scene, Views};
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 use std::path::PathBuf;
-use std::sync::{Arc, Mutex};
+use std::sync::{Arc, Mutex, OnceLock};
 
 /// The precisions of `--precision`, as indices into a scene's prepared views.
 const PRECISIONS: [(&str, Method); 3] = [
@@ -42,12 +44,21 @@ self_cell::self_cell!(
     }
 );
 
-/// A loaded, validated scene, and its prepared views (one per precision, made on first use and
-/// kept for every later render).
+/// The world engine's precision for `--precision`'s name (the same index as `PRECISIONS`).
+const WORLD_PRECISIONS: [world::Precision; 3] = [
+    world::Precision::Auto,
+    world::Precision::F32,
+    world::Precision::F64,
+];
+
+/// A loaded, validated scene, and what is prepared from it once: its per-eye views (one per
+/// precision) and, for `accel="world"`, the world engine's prepared scene with the range
+/// check's cluster bounds; each made on first use and kept for every later render.
 #[pyclass(frozen, module = "lanecast._lanecast", name = "Scene")]
 pub(crate) struct PyScene {
     scene: Arc<Scene>,
     prepared: Mutex<[Option<Arc<Prepared>>; 3]>,
+    world: OnceLock<(Arc<World>, Arc<RangeClusters>)>,
 }
 
 impl PyScene {
@@ -55,6 +66,47 @@ impl PyScene {
         PyScene {
             scene: Arc::new(scene),
             prepared: Mutex::new([None, None, None]),
+            world: OnceLock::new(),
+        }
+    }
+
+    /// What renders with `accel` (`"auto"`: the command line's default, the per-eye views;
+    /// `"world"`: the world engine, `--accel world`) in `precision`; built on first use with
+    /// the GIL released, on `threads` threads.
+    fn engine(
+        &self,
+        py: Python<'_>,
+        accel: &str,
+        precision: &str,
+        threads: Option<usize>,
+    ) -> PyResult<Engine> {
+        let p = precision_index(precision)?;
+        match accel {
+            "auto" => Ok(Engine::Views(self.prepared(p)?)),
+            "world" => {
+                let (world, range) = match self.world.get() {
+                    Some(w) => w.clone(),
+                    None => {
+                        let scene = &self.scene;
+                        let made = run(py, threads, || {
+                            (
+                                Arc::new(World::new(scene)),
+                                Arc::new(RangeClusters::new(scene)),
+                            )
+                        })?;
+                        self.world.get_or_init(|| made).clone()
+                    }
+                };
+                Ok(Engine::World {
+                    scene: self.scene.clone(),
+                    world,
+                    range,
+                    precision: WORLD_PRECISIONS[p],
+                })
+            }
+            _ => Err(value_error(format!(
+                "accel={accel:?}: must be \"auto\" or \"world\""
+            ))),
         }
     }
 
@@ -170,16 +222,18 @@ impl PyScene {
     }
 
     /// scene.render(camera=None, width=None, height=None, precision="auto", threads=None,
-    /// zdepth=False, normals=False): one view, as a `Render` with `ids` (H, W) int32 (-1:
-    /// background) and `depth` (H, W) float32 (distance along the unit ray, +inf: background),
-    /// and when asked for, `zdepth` (distance along the optical axis) and `normals` (H, W, 3).
+    /// zdepth=False, normals=False, accel="auto"): one view, as a `Render` with `ids` (H, W)
+    /// int32 (-1: background) and `depth` (H, W) float32 (distance along the unit ray, +inf:
+    /// background), and when asked for, `zdepth` (distance along the optical axis) and
+    /// `normals` (H, W, 3). `accel`: "auto" (the command line's default) or "world" (the
+    /// scene prepared once for every camera, kept by the scene: `--accel world`'s bytes).
     /// `camera` None is the scene's own. The size: `width` and `height` together, or neither
     /// for the camera's own (from intrinsics; one of the two, if given, must agree with it),
     /// else 640x480; one without the other is a ValueError, never a guessed size. The ids
     /// and depth buffers are the library's, moved into numpy without a copy. The GIL is
     /// released while the view renders, on `threads` threads (None: all cores). An integer
     /// argument out of range (`threads=-1`, `width=0`) is a ValueError naming it.
-    #[pyo3(signature = (camera = None, width = None, height = None, precision = "auto", threads = None, zdepth = false, normals = false))]
+    #[pyo3(signature = (camera = None, width = None, height = None, precision = "auto", threads = None, zdepth = false, normals = false, accel = "auto"))]
     #[allow(clippy::too_many_arguments)]
     fn render(
         &self,
@@ -191,21 +245,23 @@ impl PyScene {
         #[pyo3(from_py_with = args::threads)] threads: Option<usize>,
         zdepth: bool,
         normals: bool,
+        accel: &str,
     ) -> PyResult<Render> {
         let cam = camera_arg(&self.scene, camera)?.resolve(width, height)?;
-        let prepared = self.prepared(precision_index(precision)?)?;
-        render::one(py, &prepared, &cam, threads, Extras { zdepth, normals })
+        let engine = self.engine(py, accel, precision, threads)?;
+        render::one(py, &engine, &cam, threads, Extras { zdepth, normals })
     }
 
     /// scene.render_views(cameras, width=None, height=None, precision="auto", threads=None,
-    /// zdepth=False, normals=False): many views from the scene's prepared views, as one
+    /// zdepth=False, normals=False, accel="auto"): many views from the scene's prepared views
+    /// (`accel` as for `render`), as one
     /// `Render` whose arrays are stacked (V, H, W), view v from cameras[v]; every camera must
     /// give the same size (`width` and `height` as for `render`).
     /// Each view is rendered by the library into its recycled frame and copied into the
     /// stacked arrays. The GIL is released for the whole batch. Each view's setup fills the
     /// buffers of the view before; the scene keeps one view's buffers, per precision used,
     /// until it is freed.
-    #[pyo3(signature = (cameras, width = None, height = None, precision = "auto", threads = None, zdepth = false, normals = false))]
+    #[pyo3(signature = (cameras, width = None, height = None, precision = "auto", threads = None, zdepth = false, normals = false, accel = "auto"))]
     #[allow(clippy::too_many_arguments)]
     fn render_views(
         &self,
@@ -217,6 +273,7 @@ impl PyScene {
         #[pyo3(from_py_with = args::threads)] threads: Option<usize>,
         zdepth: bool,
         normals: bool,
+        accel: &str,
     ) -> PyResult<Render> {
         let cams = cameras_arg(cameras, width, height)?;
         let (w, h) = match cams.first() {
@@ -226,10 +283,10 @@ impl PyScene {
                 (w as usize, h as usize)
             }
         };
-        let prepared = self.prepared(precision_index(precision)?)?;
+        let engine = self.engine(py, accel, precision, threads)?;
         render::views(
             py,
-            &prepared,
+            &engine,
             &cams,
             (w, h),
             threads,
