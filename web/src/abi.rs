@@ -11,8 +11,9 @@
 //! - `lc_load(name, len, data, len)`: a `.sc` scene, or a bare `.obj` / `.ply` by its name;
 //!   0 on success (scene info as JSON in the message), 1 on failure (the command line's
 //!   `FILE:LINE:COL: message` in the message; the previous scene stays).
-//! - `lc_render(width, height, camera)`: camera points at 10 f64 (eye, look, up, fov; a NaN
-//!   fov means the scene's, else the default), or is null for the scene's own camera.
+//! - `lc_render(width, height, camera)`: camera points at 14 f64 (eye, look, up, fov, then the
+//!   intrinsics fx, fy, cx, cy; NaN for the lens not given: no lens means the scene's, else
+//!   the default), or is null for the scene's own camera.
 //! - `lc_set_engine(which)`: every later frame by the per-eye path (1), by the world engine
 //!   (2), or by the engine `engine::choose` names for the scene and size (0, the default);
 //!   `lc_engine()`: the engine of the last frame (0: none yet, 1, 2).
@@ -125,24 +126,46 @@ pub unsafe extern "C" fn lc_load(
     })
 }
 
-/// Renders the loaded scene at `width` x `height` from `camera` (10 f64: eye, look, up, fov,
-/// a NaN fov meaning the scene's or the default), or from the scene's camera when null.
-/// 0: rendered; 1: refused, the reason in the message.
+/// Renders the loaded scene at `width` x `height` from `camera` (14 f64: eye, look, up, fov,
+/// fx, fy, cx, cy; the lens is the fov when it is not NaN, else the intrinsics when fx is not
+/// NaN, else the scene's or the default), or from the scene's camera when null. A camera
+/// giving both a fov and intrinsics is refused. 0: rendered; 1: refused, the reason in the
+/// message.
 ///
 /// # Safety
-/// `camera` is null or points at 10 readable f64.
+/// `camera` is null or points at 14 readable f64.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn lc_render(width: u32, height: u32, camera: *const f64) -> i32 {
     let spec = (!camera.is_null()).then(|| {
-        let c = unsafe { std::slice::from_raw_parts(camera, 10) };
+        let c = unsafe { std::slice::from_raw_parts(camera, 14) };
         let v = |i: usize| glam::DVec3::new(c[i], c[i + 1], c[i + 2]);
-        CameraSpec {
+        let lens = match (c[9].is_nan(), c[10].is_nan()) {
+            (false, false) => return Err("camera: give a fov or intrinsics, not both".to_string()),
+            (false, true) => Some(lanecast::Lens::Fov(c[9])),
+            (true, false) => Some(lanecast::Lens::Pinhole(lanecast::scene::Intrinsics {
+                fx: c[10],
+                fy: c[11],
+                cx: c[12],
+                cy: c[13],
+            })),
+            (true, true) => None,
+        };
+        Ok(CameraSpec {
             eye: v(0),
             look: v(3),
             up: v(6),
-            lens: (!c[9].is_nan()).then_some(lanecast::Lens::Fov(c[9])),
-        }
+            lens,
+        })
     });
+    let spec = match spec.transpose() {
+        Ok(spec) => spec,
+        Err(e) => {
+            return with(|s| {
+                s.message = e;
+                1
+            });
+        }
+    };
     with(|s| {
         let spec = spec.map(|sp| CameraSpec {
             lens: sp.lens.or_else(|| s.loaded.as_ref()?.scene().camera.lens),

@@ -153,6 +153,25 @@ test('a camera other than the scene\'s renders as the CLI renders a scene with t
   assert.ok(!asBytes(own.ids).equals(want.ids));
 });
 
+test('a camera given by intrinsics (off-centre, non-square pixels) renders as the CLI renders its K line', () => {
+  const text = fs.readFileSync(path.join(root, 'scenes/scene3.sc'), 'utf8');
+  for (const intrinsics of [[180, 150, 93.5, 80.25], [260, 300, 140, 40]]) {
+    const camera = { eye: [0.5, 1, 9], look: [0, 0, 0], up: [0, 1, 0], intrinsics };
+    const moved = text.replace(/^camera .*$/m, cameraLine(camera));
+    assert.match(moved, / K /);
+    const file = path.join(tmp, 'pinhole.sc');
+    fs.writeFileSync(file, moved);
+    const got = lc.render(text, 200, 150, camera);
+    const want = native(file, 200, 150, ACCEL[got.engine]);
+    assert.ok(!want.error, want.error);
+    assert.ok(asBytes(got.ids).equals(want.ids), 'ids differ');
+    assert.ok(asBytes(got.depth).equals(want.depth), 'depths differ');
+    assert.ok(got.ids.some((id) => id >= 0), 'something is hit');
+  }
+  assert.throws(() => lc.render(text, 200, 150, { eye: [0, 0, 9], look: [0, 0, 0], up: [0, 1, 0], fov: 40, intrinsics: [100, 100, 100, 75] }), /fov or intrinsics, not both/);
+  assert.throws(() => lc.render(text, 200, 150, { eye: [0, 0, 9], look: [0, 0, 0], up: [0, 1, 0], intrinsics: [-100, 100, 100, 75] }));
+});
+
 test('pick reports id, type, scene line, depth and hit point as --ids and --depth give them', () => {
   const text = fs.readFileSync(path.join(root, 'scenes/scene1.sc'), 'utf8');
   const lines = text.split('\n');

@@ -45,7 +45,7 @@ export class Lanecast {
     this.sceneText = null; // the text render(text, ...) last loaded
     this.width = 0;
     this.height = 0;
-    this.camPtr = this.x.lc_alloc(80);
+    this.camPtr = this.x.lc_alloc(112);
   }
 
   get memory() {
@@ -94,8 +94,9 @@ export class Lanecast {
 
   /**
    * Renders a frame. `sceneText`: scene text to load first (named scene.sc), or null for the
-   * scene loaded. `camera`: {eye, look, up, fov} (fov optional: the scene's, else 60), or
-   * omitted for the scene's own. Returns {ids: Int32Array, depth: Float32Array,
+   * scene loaded. `camera`: {eye, look, up, fov} or {eye, look, up, intrinsics: [fx, fy, cx,
+   * cy]} (pixels of this image, as the command line's `K`; no lens: the scene's, else fov 60),
+   * or omitted for the scene's own. Returns {ids: Int32Array, depth: Float32Array,
    * rgba: Uint8ClampedArray, width, height, ms} (ms: the render alone).
    */
   render(sceneText, width, height, camera, shading = {}) {
@@ -106,8 +107,10 @@ export class Lanecast {
     let cam = 0;
     if (camera) {
       cam = this.camPtr;
-      const c = new Float64Array(this.memory, cam, 10);
-      c.set([...camera.eye, ...camera.look, ...camera.up, camera.fov ?? NaN]);
+      const c = new Float64Array(this.memory, cam, 14);
+      const k = camera.intrinsics ?? [NaN, NaN, NaN, NaN];
+      if (k.length !== 4) throw new Error('camera.intrinsics: give [fx, fy, cx, cy]');
+      c.set([...camera.eye, ...camera.look, ...camera.up, camera.fov ?? NaN, ...k]);
     }
     const t0 = now();
     const rc = this.x.lc_render(width, height, cam);
@@ -174,7 +177,7 @@ export class Lanecast {
   }
 }
 
-/** A `camera` line for a scene file (or a views file) from {eye, look, up, fov}. */
+/** A `camera` line for a scene file (or a views file) from {eye, look, up, fov or intrinsics}. */
 export function cameraLine(c) {
   const n = (v) => {
     const s = Number(v.toPrecision(7)).toString();
@@ -183,6 +186,7 @@ export function cameraLine(c) {
   const v = (a) => a.map(n).join(' ');
   let line = `camera eye ${v(c.eye)} look ${v(c.look)} up ${v(c.up)}`;
   if (c.fov != null) line += ` fov ${n(c.fov)}`;
+  else if (c.intrinsics != null) line += ` K ${v(c.intrinsics)}`;
   return line;
 }
 
