@@ -69,6 +69,7 @@ fn one_view(dir: &TempDir, scene: &str, camera: &[String; 4], accel: &str) {
     assert_success(&o, &format!("one view through {accel}"));
 }
 
+mod dataset;
 mod ffmpeg;
 mod refusals;
 mod resume;
