@@ -110,6 +110,18 @@ fn world_seed_scenes_agree_with_the_oracle() {
     }
 }
 
+/// The pixels the oracle hits and the world engine's f32 view of `scene` (its own camera)
+/// leaves empty.
+fn holes_in_f32(scene: &Scene) -> usize {
+    let world = World::new(scene);
+    let cam = camera_of(scene, W, H);
+    let frame = world.render(&cam, Precision::F32);
+    let (_, oracle) = lanecast::compare::compare_frame(scene, &cam, &frame);
+    (0..frame.ids.len())
+        .filter(|&k| oracle.ids[k] >= 0 && frame.ids[k] < 0)
+        .count()
+}
+
 /// A closed icosphere seen from random eyes: every pixel the oracle hits is hit (no holes),
 /// in f32 alone too.
 #[test]
@@ -124,13 +136,7 @@ fn world_closed_mesh_has_no_holes() {
         } else {
             scene
         });
-        let world = World::new(&scene);
-        let cam = camera_of(&scene, W, H);
-        let frame = world.render(&cam, Precision::F32);
-        let (_, oracle) = lanecast::compare::compare_frame(&scene, &cam, &frame);
-        let holes = (0..frame.ids.len())
-            .filter(|&k| oracle.ids[k] >= 0 && frame.ids[k] < 0)
-            .count();
+        let holes = holes_in_f32(&scene);
         assert_eq!(holes, 0, "icosphere view {i}: {holes} holes");
     }
 }
@@ -199,13 +205,7 @@ fn world_eyes_among_the_primitives_agree_with_the_oracle() {
         let ico = triangles(&icosphere(DVec3::ZERO, 2.0, 3));
         let inside = spec(rng.in_box(DVec3::ZERO, 1.0), look, up, 90.0);
         let scene = Arc::new(build_scene(&format!("inside{seed}.sc"), inside, &ico));
-        let world = World::new(&scene);
-        let cam = camera_of(&scene, W, H);
-        let frame = world.render(&cam, Precision::F32);
-        let (_, oracle) = lanecast::compare::compare_frame(&scene, &cam, &frame);
-        let holes = (0..frame.ids.len())
-            .filter(|&k| oracle.ids[k] >= 0 && frame.ids[k] < 0)
-            .count();
+        let holes = holes_in_f32(&scene);
         assert_eq!(holes, 0, "icosphere from inside #{seed}: {holes} holes");
         world_check(
             &format!("icosphere from inside #{seed}"),
