@@ -167,6 +167,7 @@ impl View {
         }
         let z0 = reach / (2.0 * self.basis.lmax);
         let (hw, hh) = (self.half_w as f64, self.half_h as f64);
+        let (cx, cy) = (self.principal.0 as f64, self.principal.1 as f64);
         let (mut x0, mut x1, mut y0, mut y1) = (
             f64::INFINITY,
             f64::NEG_INFINITY,
@@ -175,8 +176,8 @@ impl View {
         );
         let mut any = false;
         let mut add = |x: f64, y: f64, z: f64| {
-            let px = (x / z / hw + 1.0) * self.w as f64 * 0.5 - 0.5;
-            let py = (1.0 - y / z / hh) * self.h as f64 * 0.5 - 0.5;
+            let px = (x / z / hw + cx) * self.w as f64 * 0.5 - 0.5;
+            let py = (cy - y / z / hh) * self.h as f64 * 0.5 - 0.5;
             (x0, x1, y0, y1) = (x0.min(px), x1.max(px), y0.min(py), y1.max(py));
             any = true;
         };

@@ -181,7 +181,7 @@ fn world_views_depend_on_their_camera_alone() {
 }
 
 /// An eye among the primitives (near and inside them, random directions, fields of view up to
-/// 150 degrees): polygons reach behind the eye plane and are boxed from the part the frustum
+/// 150 degrees, and rigs' pinholes off the centre): polygons reach behind the eye plane and are boxed from the part the frustum
 /// can reach (`View::clipped_box`); the oracle's pixels still, and no holes in a closed mesh
 /// seen from inside.
 #[test]
@@ -198,12 +198,19 @@ fn world_eyes_among_the_primitives_agree_with_the_oracle() {
             up = (look - eye).any_orthonormal_vector();
         }
         let camera = spec(eye, look, up, rng.range(40.0, 150.0));
+        // every other eye a rig's pinhole: the clipped boxes follow its principal point
+        let pinhole = |rng: &mut Rng, camera| match seed % 2 {
+            0 => random_pinhole(rng, camera, W, H),
+            _ => camera,
+        };
+        let camera = pinhole(&mut rng, camera);
         let scene = build_scene(&format!("among{seed}.sc"), camera, &shapes);
         for precision in [Precision::Auto, Precision::F64] {
             world_check(&format!("eye among #{seed}"), scene.clone(), precision);
         }
         let ico = triangles(&icosphere(DVec3::ZERO, 2.0, 3));
         let inside = spec(rng.in_box(DVec3::ZERO, 1.0), look, up, 90.0);
+        let inside = pinhole(&mut rng, inside);
         let scene = Arc::new(build_scene(&format!("inside{seed}.sc"), inside, &ico));
         let holes = holes_in_f32(&scene);
         assert_eq!(holes, 0, "icosphere from inside #{seed}: {holes} holes");
