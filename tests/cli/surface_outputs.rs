@@ -335,8 +335,10 @@ fn numbered_normals_and_zdepth_resume_with_skip_existing() {
     ok(&dir, &again);
     let stats: serde_json::Value =
         serde_json::from_slice(&fs::read(dir.join("s.json")).unwrap()).unwrap();
-    assert_eq!(stats["views"]["rendered"], 2);
-    assert_eq!(stats["views"]["skipped"], 2);
+    assert_eq!(stats["views_summary"]["rendered"], 2);
+    assert_eq!(stats["views_summary"]["skipped"], 2);
+    assert_eq!(stats["views"][1]["outputs"]["normals"], "n1.npy");
+    assert_eq!(stats["views"][3]["outputs"]["zdepth"], "z03.npy");
     assert_eq!(stats["outputs"]["normals"], "n0.npy");
     assert_eq!(stats["outputs"]["zdepth"], "z00.npy");
     for (k, files) in before.iter().enumerate() {
