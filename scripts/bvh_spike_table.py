@@ -69,8 +69,7 @@ def main():
     vs_embree.build()
     vs_embree.sh(["cargo", "build", "--release", "-p", "lanecast-lab", "--example", "bvh_spike"],
                  cwd=ROOT)
-    cpu = next((line.split(":", 1)[1].strip() for line in open("/proc/cpuinfo")
-                if line.startswith("model name")), "unknown CPU")
+    cpu = vs_embree.cpu()
     print(f"{cpu}, {os.cpu_count()} cores; {a.threads} threads, {a.size}, {a.views}-view orbit, "
           f"median of {a.rounds} alternated rounds\n")
     rows, notes = [], []

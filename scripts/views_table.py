@@ -129,8 +129,7 @@ def main():
     ap.add_argument("--accel", default="auto", choices=["auto", "tiles", "world"])
     a = ap.parse_args()
     vs_embree.build()
-    cpu = next((line.split(":", 1)[1].strip() for line in open("/proc/cpuinfo")
-                if line.startswith("model name")), "unknown CPU")
+    cpu = vs_embree.cpu()
     print(f"{cpu}, {os.cpu_count()} cores; {a.threads} threads, {a.size}, {a.views}-view orbit, "
           f"--accel {a.accel}, median of {a.rounds} alternated rounds\n")
     print("| scene | triangles | lanecast per view (setup + render) | Embree per view | ratio "
