@@ -151,17 +151,10 @@ impl View {
         let cam = |p: DVec3| {
             let d = p - self.eye;
             let c = |a: [f64; 3]| d.x * a[0] + d.y * a[1] + d.z * a[2];
-            [c(r), c(u), c(f), d.length()]
+            [c(r), c(u), c(f)]
         };
-        let q: [[f64; 4]; N] = std::array::from_fn(|i| cam(w[i]));
-        let mut diam = 0.0f64;
-        for i in 0..N {
-            for j in i + 1..N {
-                diam = diam.max((w[i] - w[j]).length());
-            }
-        }
-        let far = q.iter().fold(0.0f64, |m, v| m.max(v[3]));
-        let reach = (far - diam) * (1.0 - 1e-9);
+        let q: [[f64; 3]; N] = std::array::from_fn(|i| cam(w[i]));
+        let reach = reach(&w.map(|p| p - self.eye)) * (1.0 - 1e-9);
         if reach.is_nan() || reach <= 0.0 {
             return Some(self.full());
         }
@@ -480,22 +473,28 @@ fn hidden(k: &Cluster, view: &View, st: &Band) -> bool {
 }
 
 /// A lower bound on the distance from the eye to any point of the polygon with eye-relative
-/// f32 vertices `a`: every point lies within the polygon's diameter of each vertex, so it is
-/// at least `max |a_i| - diam` away. Evaluated in f64 from the f32 vectors (exactly enough);
-/// `a_i` is within 0.87u|a_i| of the exact vertex, so the exact bound is lower by at most 3uM
-/// (M = max |a_i|), and 1e-6 M is taken off.
+/// vertices `d` (f64): every point lies within the polygon's diameter of each vertex, so it is
+/// at least `max |d_i| - diam` away.
 #[inline(always)]
-fn nearest<const N: usize>(a: &[[f32; 3]; N]) -> f64 {
-    let d = a.map(|v| v.map(f64::from));
-    let len = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-    let m = d.iter().fold(0.0f64, |m, &v| m.max(len(v)));
+fn reach<const N: usize>(d: &[DVec3; N]) -> f64 {
+    let far = d.iter().fold(0.0f64, |m, v| m.max(v.length()));
     let mut diam = 0.0f64;
     for i in 0..N {
         for j in i + 1..N {
-            diam = diam.max(len(std::array::from_fn(|c| d[i][c] - d[j][c])));
+            diam = diam.max((d[i] - d[j]).length());
         }
     }
-    m - diam - 1e-6 * m
+    far - diam
+}
+
+/// [`reach`] of the polygon with eye-relative f32 vertices `a`, evaluated in f64 from the f32
+/// vectors (exactly enough): `a_i` is within 0.87u|a_i| of the exact vertex, so the exact bound
+/// is lower by at most 3uM (M = max |a_i|), and 1e-6 M is taken off.
+#[inline(always)]
+fn nearest<const N: usize>(a: &[[f32; 3]; N]) -> f64 {
+    let d = a.map(|v| DVec3::new(v[0] as f64, v[1] as f64, v[2] as f64));
+    let m = d.iter().fold(0.0f64, |m, v| m.max(v.length()));
+    reach(&d) - 1e-6 * m
 }
 
 /// Pixels a polygon's box may hold before the 2D outline test is skipped (the exact test
