@@ -2,7 +2,7 @@
 //!
 //! Formula (the format's contract, so any other tool can reproduce a pixel):
 //! ```text
-//! f = normalize(look - eye); r = normalize(cross(f, up)); u = cross(r, f)
+//! f = normalize(look - eye); r = normalize(cross(f, up)); u = cross(r, f)      (basis.rs)
 //! intrinsics fx, fy, cx, cy in pixels (skew 0); a horizontal field of view is
 //!   fx = fy = W / (2 tan(fov/2)), cx = W/2, cy = H/2
 //! pixel (x, y), y = 0 is the TOP row, its centre at (x + 0.5, y + 0.5):
@@ -37,20 +37,12 @@
 //! kernel's precision, in the order written. [`RayTables::dir_x1`] and [`RayTables::dir_x8`]
 //! perform the same operations in the same order, so in f32 they give bit-identical rays.
 
+use crate::basis::basis;
 use crate::error::{Error, Result};
 use crate::real::{Real, V3, dot, v3};
 use crate::scene::{CameraSpec, Intrinsics, Lens, Scene};
 use glam::DVec3;
 use wide::f32x8;
-
-/// The orthonormal camera frame (forward, right, up), or `None` when `look == eye` or `up` is
-/// parallel to the view direction (the cross product has no usable length).
-pub fn basis(eye: DVec3, look: DVec3, up: DVec3) -> Option<[DVec3; 3]> {
-    let f = (look - eye).try_normalize()?;
-    let r = f.cross(up).try_normalize()?;
-    let u = r.cross(f);
-    Some([f, r, u])
-}
 
 /// The intrinsics of a 3x3 matrix `K = [[fx, s, cx], [0, fy, cy], [0, 0, 1]]` as calibrations
 /// give it (module comment: pixel x spans `[x, x + 1)`), or why not: a non-finite entry, a
@@ -384,30 +376,6 @@ mod tests {
             up: DVec3::Y,
             lens: None,
         }
-    }
-
-    #[test]
-    fn basis_is_right_handed_and_orthonormal() {
-        let [f, r, u] = basis(
-            DVec3::new(1.0, 2.0, 3.0),
-            DVec3::new(-4.0, 0.5, 2.0),
-            DVec3::Y,
-        )
-        .unwrap();
-        for v in [f, r, u] {
-            assert!((v.length() - 1.0).abs() < 1e-15);
-        }
-        assert!(f.dot(r).abs() < 1e-15 && f.dot(u).abs() < 1e-15 && r.dot(u).abs() < 1e-15);
-        assert!(
-            (r.cross(u) - (-f)).length() < 1e-15,
-            "r x u = -f: camera looks down -z of (r,u)"
-        );
-    }
-
-    #[test]
-    fn degenerate_bases_are_refused() {
-        assert!(basis(DVec3::ONE, DVec3::ONE, DVec3::Y).is_none());
-        assert!(basis(DVec3::ZERO, DVec3::Y, DVec3::Y).is_none());
     }
 
     #[test]

@@ -97,6 +97,7 @@
 #![warn(missing_docs)]
 
 pub(crate) mod accel;
+pub(crate) mod basis;
 pub(crate) mod camera;
 #[cfg(feature = "cli")]
 pub(crate) mod cli;

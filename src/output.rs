@@ -35,6 +35,7 @@ use crate::{Error, Result};
 
 #[cfg(feature = "cli")]
 mod complete;
+mod frame;
 mod lock;
 mod npy;
 mod pattern;

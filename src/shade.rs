@@ -30,7 +30,10 @@
 
 use std::collections::HashMap;
 
+use crate::Frame;
+use crate::camera::Camera;
 use crate::par::prelude::*;
+use crate::scene::Scene;
 
 /// The `ordered` palette, in assignment order: violet, blue, green, yellow, orange, red.
 pub const PALETTE: [[u8; 3]; 6] = [
@@ -322,6 +325,32 @@ fn hsv_to_rgb(hue: f64, sat: f64, val: f64) -> [u8; 3] {
     };
     let byte = |c: f64| (c * 255.0).round() as u8;
     [byte(r), byte(g), byte(b)]
+}
+
+impl Frame<f32> {
+    /// The frame shaded to RGB, three bytes per pixel, row 0 at the top ([`shade()`]: a colour per
+    /// primitive by `mode`, or `shade`'s headlight on the surfaces, dimmed with distance by
+    /// `variation`; `seed` varies the random colours). `scene` and `camera` are those the frame
+    /// was rendered from: `shade` mode lights each hit by its normal ([`Frame::headlight`]).
+    pub fn rgb(
+        &self,
+        scene: &Scene,
+        camera: &Camera,
+        mode: ColorMode,
+        variation: Variation,
+        seed: u64,
+    ) -> Vec<u8> {
+        let light = mode.needs_light().then(|| self.headlight(scene, camera));
+        shade(
+            &self.ids,
+            &self.depth,
+            light.as_deref(),
+            self.width,
+            mode,
+            variation,
+            seed,
+        )
+    }
 }
 
 #[cfg(test)]

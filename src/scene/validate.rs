@@ -249,9 +249,9 @@ pub fn camera(c: &CameraSpec) -> Result<(), String> {
         return Err("camera up vector is too long or too short for f64 arithmetic".into());
     }
     let sin = dir.normalize().cross(c.up.normalize()).length();
-    // The second test asks the camera's own basis (one formula, in camera.rs) whether it can
+    // The second test asks the camera's own basis (one formula, in basis.rs) whether it can
     // be built; the tolerance makes the first one stricter.
-    if sin < CAMERA_PARALLEL_TOL || crate::camera::basis(c.eye, c.look, c.up).is_none() {
+    if sin < CAMERA_PARALLEL_TOL || crate::basis::basis(c.eye, c.look, c.up).is_none() {
         return Err("camera up vector is parallel to the view direction (look - eye)".into());
     }
     match c.lens {
