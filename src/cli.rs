@@ -211,7 +211,7 @@ fn parse_raw(raw: &[OsString]) -> Result<Command> {
             let output = match r.output {
                 Some(o) => o,
                 None if source.is_some() => views::default_output(&view.input)?,
-                None if view.input == Path::new(crate::scene::parse::STDIN) => {
+                None if view.input == Path::new(crate::scene::STDIN) => {
                     return Err(Error::usage(
                         "-i -: a scene from standard input has no file name to put the image \
                          beside; give -o IMAGE",

@@ -239,6 +239,7 @@ impl Records<f64> for SceneRecords<'_> {
 }
 
 mod columns;
+pub mod trace;
 pub use columns::{Packed, Polygons, Spheres};
 
 /// A set of primitive ids, one bit each: the primitives a view leaves out of its stores

@@ -20,12 +20,12 @@ use super::build::{self, Built};
 use crate::camera::Camera;
 use crate::kernel::lanes::Lanes;
 use crate::kernel::methods::wide64::{Hit4d, polygon_x4d, sphere_x4d};
-use crate::kernel::packet::{polygons_x8, spheres_x8};
 use crate::kernel::polygon::PolyK;
-use crate::kernel::scalar::ranges_x1;
 use crate::kernel::{Hit, Hit8, HitLanes};
 use crate::real::{Real, V3, f32_down, f32_up};
 use crate::scene::Scene;
+use crate::soa::trace::ranges_x1;
+use crate::soa::trace::{polygons_x8, spheres_x8};
 use crate::soa::{Packed, Prepared, Records};
 use wide::{f32x8, f64x4};
 

@@ -4,7 +4,7 @@
 //! out of a tile's entry the packets none of whose rays the kernel can accept.
 
 use super::reach::{Region, View, plane_near, sphere_near};
-use super::tiles::{TILE_H, TILE_W};
+use super::{TILE_H, TILE_W};
 use crate::camera::Camera;
 use crate::kernel::polygon::PolyK;
 use glam::DVec3;

@@ -70,6 +70,7 @@
 //! sphere, rectangles clipped at the border, random telephoto cameras on the meshes).
 
 use super::footprint::PacketCones;
+use super::{TILE_H, TILE_W};
 use crate::kernel::Hit8;
 use crate::kernel::packet::{BLOCK_H, BLOCK_W};
 use crate::kernel::polygon::polygon_lanes_all;
@@ -77,12 +78,6 @@ use crate::kernel::sphere::sphere_lanes_all;
 use crate::par::prelude::*;
 use crate::soa::Packed;
 use wide::f32x8;
-
-/// Tile width in pixels: two packets of 4x2. Measured against 16 and 32 (docs/performance.md, "Acceleration"):
-/// the same on the seed scenes, 15-35% faster at 65,536 primitives.
-pub const TILE_W: usize = 8;
-/// Tile height in pixels: the renderer's strip height, so a strip is one row of tiles.
-pub const TILE_H: usize = 8;
 
 /// Kinds of list entries (top two bits of [`Entry::prim`]).
 const SPHERE: u32 = 0;

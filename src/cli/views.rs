@@ -27,7 +27,7 @@ pub fn source(views: Option<PathBuf>, orbit: Option<u32>) -> Option<ViewSource> 
 /// The image pattern when `-o` is not given with several views: the input's name without its
 /// extension, then `_%05d.png` (`scenes/scan.sc` -> `scenes/scan_%05d.png`).
 pub fn default_output(input: &Path) -> Result<PathBuf> {
-    if input == Path::new(crate::scene::parse::STDIN) {
+    if input == Path::new(crate::scene::STDIN) {
         return Err(Error::usage(
             "-i -: a scene from standard input has no file name to put the images beside; \
              give -o PATTERN (such as frames/view_%05d.png)",

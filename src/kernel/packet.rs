@@ -1,13 +1,8 @@
-//! The packet driver: eight rays from one pixel block against every primitive, type by type.
-//! Each primitive's constants are broadcast to the eight lanes; a type the scene lacks has an
-//! empty store and its loop runs zero times.
+//! The packet: eight rays from one pixel block, its shape and its rays. The loops that test a
+//! packet against a store's primitives are `soa/trace.rs`.
 
 use crate::camera::RayTables;
-use crate::kernel::polygon::polygon_x8;
-use crate::kernel::sphere::sphere_x8;
-use crate::kernel::{Hit8, LANES};
-use crate::soa::{Packed, Polygons, Spheres};
-use std::ops::Range;
+use crate::kernel::LANES;
 use wide::f32x8;
 
 /// Pixel block of one packet: `BLOCK_W` x `BLOCK_H` = `LANES`; lane i covers pixel
@@ -16,40 +11,6 @@ use wide::f32x8;
 pub const BLOCK_W: usize = 4;
 /// Pixel block height: `LANES / BLOCK_W` = 2 rows.
 pub const BLOCK_H: usize = LANES / BLOCK_W;
-
-/// Nearest hits of the rays `d` (unit directions from the eye) among every primitive, folded
-/// into `hit`: the brute-force driver (`--accel none`).
-#[inline]
-pub fn trace_x8(p: &Packed, d: &[f32x8; 3], hit: &mut Hit8) {
-    spheres_x8(&p.spheres, 0..p.spheres.len(), d, hit);
-    polygons_x8(&p.triangles, 0..p.triangles.len(), d, hit);
-    polygons_x8(&p.quads, 0..p.quads.len(), d, hit);
-}
-
-/// The spheres `range` of the store against eight rays.
-#[inline(always)]
-pub fn spheres_x8(s: &Spheres, range: Range<usize>, d: &[f32x8; 3], hit: &mut Hit8) {
-    for i in range {
-        if let Some((mask, t)) = sphere_x8(&s.get(i), d) {
-            hit.update(mask, t, s.id[i]);
-        }
-    }
-}
-
-/// The polygons `range` of a triangle or quad store against eight rays.
-#[inline(always)]
-pub fn polygons_x8<const N: usize>(
-    g: &Polygons<N>,
-    range: Range<usize>,
-    d: &[f32x8; 3],
-    hit: &mut Hit8,
-) {
-    for i in range {
-        if let Some((mask, t)) = polygon_x8(&g.get(i), d) {
-            hit.update(mask, t, g.id[i]);
-        }
-    }
-}
 
 /// The rays of the `BW` x (`LANES` / `BW`) block whose top-left pixel is (x0, y0), and the mask
 /// of lanes inside a `width` x `height` image. `tables` must be padded to whole blocks.

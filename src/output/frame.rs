@@ -71,7 +71,10 @@ mod tests {
             .unwrap();
         frame.write_ids(&ids).unwrap();
         frame.write_depth(&depth).unwrap();
-        assert_eq!(fs::read(&ids).unwrap(), crate::output::npy_i32(33, 17, &frame.ids));
+        assert_eq!(
+            fs::read(&ids).unwrap(),
+            crate::output::npy_i32(33, 17, &frame.ids)
+        );
         assert_eq!(
             fs::read(&depth).unwrap(),
             crate::output::npy_f32(33, 17, &frame.depth)

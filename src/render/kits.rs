@@ -19,12 +19,12 @@ use crate::kernel::methods::woop::{WoopK, WoopRay, WoopRay8, woop_ray, woop_x1, 
 use crate::kernel::methods::{quad_split, world};
 use crate::kernel::packet::block_rays;
 use crate::kernel::polygon::{QuadK, TriangleK, polygon_x1, polygon_x8};
-use crate::kernel::scalar::trace_x1;
 use crate::kernel::sphere::{SphereK, sphere_x1, sphere_x8};
 use crate::kernel::{Hit, Hit8, LANES};
 use crate::real::V3;
 use crate::scene::{Scene, Shape};
 use crate::soa::Prepared;
+use crate::soa::trace::trace_x1;
 use glam::DVec3;
 use std::marker::PhantomData;
 use wide::f32x8;
@@ -440,7 +440,7 @@ impl<S: SphereFamily, P: PolyFamily> Kit<S, P> {
 }
 
 /// The f64 scalar oracle, exactly as `lanecast --kernel scalar` computes it (`soa::Prepared<f64>`
-/// and `kernel::scalar::trace_x1`), one ray at a time on the calling thread.
+/// and `soa::trace::trace_x1`), one ray at a time on the calling thread.
 pub struct Oracle {
     /// Every primitive's f64 constants.
     pub prepared: Prepared<f64>,

@@ -22,7 +22,10 @@ pub(crate) fn command(cmd: Command) -> Result<()> {
             Ok(())
         }
         // Every phase (parse, setup, render, shade) runs on the pool `--threads` asks for.
-        Command::Render(s) => pool(s.view.threads)?.install(|| render::render_command(&s)),
+        Command::Render(s) => pool(s.view.threads)?.install(|| match &s.views {
+            Some(source) => views::views_command(&s, source),
+            None => render::render_command(&s),
+        }),
         Command::Compare(s) => pool(s.view.threads)?.install(|| compare::compare_command(&s)),
     }
 }

@@ -148,13 +148,11 @@ pub(super) fn encode_to_stdout(
     }
 }
 
-/// Runs the render command. Every output is checked and its temporary file created before the
-/// scene is read; the outputs are renamed into place together at the end (`OutputSet`).
+/// Runs the render command for one view (many views: `views::views_command`). Every output is
+/// checked and its temporary file created before the scene is read; the outputs are renamed
+/// into place together at the end (`OutputSet`).
 pub(crate) fn render_command(s: &RenderSettings) -> Result<()> {
-    if let Some(source) = &s.views {
-        return super::views::views_command(s, source);
-    }
-    // hardening (issue 5): Ctrl-C / SIGTERM remove pending temporary files, exit 130.
+    // Ctrl-C / SIGTERM remove pending temporary files, exit 130.
     output::install_interrupt_cleanup();
     check_memory(s.view.width, s.view.height)?;
     let method = s.view.method;

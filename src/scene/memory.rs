@@ -8,64 +8,11 @@
 //!   framing camera `lanecast -i mesh.obj` gives it.
 
 use super::chunks::{self, BINARY_PROBE};
-use super::mesh::{self, MeshFormat};
-use super::shapes::Mesh;
+use super::mesh::{MeshFiles, mesh_from_bytes};
 use super::{Scene, parse, range};
-use crate::error::{Error, Result};
-use crate::limits::{MAX_PRIMITIVES, MAX_SCENE_BYTES};
+use crate::error::Result;
+use crate::limits::MAX_PRIMITIVES;
 use std::path::Path;
-
-/// Where a scene's `mesh` files are read from.
-#[derive(Clone, Copy)]
-pub(super) enum MeshFiles<'a> {
-    /// From disk ([`mesh::load_mesh`]).
-    Disk,
-    /// From a lookup function: `None` when it has no file at that path.
-    Memory(&'a dyn Fn(&Path) -> Option<Vec<u8>>),
-}
-
-impl MeshFiles<'_> {
-    /// The triangles of the mesh file at `path`, with room for `room` of them, and how many
-    /// are degenerate.
-    pub(super) fn load(self, path: &Path, room: usize) -> Result<(Mesh, usize)> {
-        match self {
-            MeshFiles::Disk => mesh::load_mesh(path, room),
-            MeshFiles::Memory(get) => match get(path) {
-                Some(bytes) => mesh_from_bytes(&bytes, path, room),
-                None => Err(Error::io(
-                    path,
-                    "read mesh",
-                    std::io::Error::new(
-                        std::io::ErrorKind::NotFound,
-                        "not among the files given with the scene",
-                    ),
-                )),
-            },
-        }
-    }
-}
-
-/// A mesh file's bytes as [`mesh::load_mesh`] reads them from disk: the same size limit, the
-/// format by `path`'s extension, an OBJ refused as binary when its first bytes hold a NUL.
-fn mesh_from_bytes(bytes: &[u8], path: &Path, max_triangles: usize) -> Result<(Mesh, usize)> {
-    if bytes.len() as u64 > MAX_SCENE_BYTES {
-        return Err(Error::InputFile {
-            file: path.to_path_buf(),
-            msg: format!(
-                "mesh file is {} bytes; the limit is {MAX_SCENE_BYTES}",
-                bytes.len()
-            ),
-        });
-    }
-    match MeshFormat::of(path) {
-        Some(MeshFormat::Ply) => mesh::parse_ply(bytes, path, max_triangles),
-        Some(MeshFormat::Obj) | None => {
-            let head = &bytes[..bytes.len().min(BINARY_PROBE)];
-            chunks::refuse_binary(path, head, "OBJ files")?;
-            mesh::parse_obj(bytes, path, max_triangles)
-        }
-    }
-}
 
 /// [`parse_scene`](super::parse_scene) for a scene's bytes in memory, its `mesh` files from
 /// `meshes`: called with each `mesh` line's path joined to `file`'s folder (as

@@ -22,7 +22,7 @@
 //! Then the vertices are joined into one list and the faces' vertex indices written in
 //! parallel, in file order: the mesh stays indexed ([`Mesh`]), about 24 bytes a triangle. A shared budget bounds what chunks hold to the triangle limit (see `parse.rs`).
 
-use super::chunks::{self, Budget, Chunk};
+use super::chunks::{self, BINARY_PROBE, Budget, Chunk};
 use super::obj::{self, Base, Halt, ObjChunk, Stop};
 use super::shapes::Mesh;
 use crate::error::{Error, Result};
@@ -205,6 +205,62 @@ fn finish(
         faces: out,
     };
     Ok((mesh, zero))
+}
+
+/// Where a scene's `mesh` files are read from.
+#[derive(Clone, Copy)]
+pub(super) enum MeshFiles<'a> {
+    /// From disk ([`load_mesh`]).
+    Disk,
+    /// From a lookup function: `None` when it has no file at that path.
+    Memory(&'a dyn Fn(&Path) -> Option<Vec<u8>>),
+}
+
+impl MeshFiles<'_> {
+    /// The triangles of the mesh file at `path`, with room for `room` of them, and how many
+    /// are degenerate.
+    pub(super) fn load(self, path: &Path, room: usize) -> Result<(Mesh, usize)> {
+        match self {
+            MeshFiles::Disk => load_mesh(path, room),
+            MeshFiles::Memory(get) => match get(path) {
+                Some(bytes) => mesh_from_bytes(&bytes, path, room),
+                None => Err(Error::io(
+                    path,
+                    "read mesh",
+                    std::io::Error::new(
+                        std::io::ErrorKind::NotFound,
+                        "not among the files given with the scene",
+                    ),
+                )),
+            },
+        }
+    }
+}
+
+/// A mesh file's bytes as [`load_mesh`] reads them from disk: the same size limit, the
+/// format by `path`'s extension, an OBJ refused as binary when its first bytes hold a NUL.
+pub(super) fn mesh_from_bytes(
+    bytes: &[u8],
+    path: &Path,
+    max_triangles: usize,
+) -> Result<(Mesh, usize)> {
+    if bytes.len() as u64 > MAX_SCENE_BYTES {
+        return Err(Error::InputFile {
+            file: path.to_path_buf(),
+            msg: format!(
+                "mesh file is {} bytes; the limit is {MAX_SCENE_BYTES}",
+                bytes.len()
+            ),
+        });
+    }
+    match MeshFormat::of(path) {
+        Some(MeshFormat::Ply) => parse_ply(bytes, path, max_triangles),
+        Some(MeshFormat::Obj) | None => {
+            let head = &bytes[..bytes.len().min(BINARY_PROBE)];
+            chunks::refuse_binary(path, head, "OBJ files")?;
+            parse_obj(bytes, path, max_triangles)
+        }
+    }
 }
 
 #[cfg(test)]

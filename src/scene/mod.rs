@@ -29,6 +29,11 @@ use glam::DVec3;
 pub use memory::{parse_mesh_bytes, parse_scene_with};
 pub use range_clusters::RangeClusters;
 pub use shapes::{Iter, Mesh, PartRef, Shapes};
+
+/// The input path that means standard input (`-i -`).
+pub const STDIN: &str = "-";
+/// How a scene read from standard input is named in messages.
+pub const STDIN_NAME: &str = "<stdin>";
 use std::path::PathBuf;
 
 use crate::error::Result;

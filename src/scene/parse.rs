@@ -40,11 +40,12 @@
 //! really is passed before that point.
 
 use super::chunks::{self, Budget};
-use super::memory::MeshFiles;
+use super::mesh::MeshFiles;
 use super::scene_chunk::{ChunkOut, Event, StopKind, parse_chunk, second_camera};
 use super::shapes::{Mesh, Part, Shapes};
 use super::statement::{CAMERA_SYNTAX, first_token_col};
 use super::{CameraSpec, Scene, mesh};
+use super::{STDIN, STDIN_NAME};
 use crate::error::{Error, Result};
 use crate::limits::{MAX_PRIMITIVES, MAX_SCENE_BYTES};
 use crate::par::prelude::*;
@@ -92,11 +93,6 @@ pub fn load_scene_meshes(path: &Path) -> Result<(Scene, Vec<PathBuf>)> {
 
 /// What a scene file must be, in the message that refuses a binary one.
 const SCENE_TEXT: &str = "scene files";
-
-/// The input path that means standard input (`-i -`).
-pub const STDIN: &str = "-";
-/// How a scene read from standard input is named in messages.
-pub const STDIN_NAME: &str = "<stdin>";
 
 /// A scene read from standard input (`-i -`), under the same size limit as a file, named
 /// [`STDIN_NAME`] in messages; its `mesh` paths are relative to the working folder.

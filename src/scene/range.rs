@@ -92,7 +92,7 @@ fn token_col(source: &Path, text: Option<&[u8]>, line: usize, token: usize) -> u
     let read;
     let bytes: &[u8] = match text {
         Some(t) => t,
-        None if source == Path::new(super::parse::STDIN_NAME) => return 0,
+        None if source == Path::new(super::STDIN_NAME) => return 0,
         None => match std::fs::read(source) {
             Ok(b) => {
                 read = b;

@@ -1,7 +1,7 @@
 //! Step 3 of `render::cull`: whether a view's frame hides a cluster left out on trial.
 
 use super::Slab;
-use crate::accel::tiles::{TILE_H, TILE_W};
+use crate::accel::{TILE_H, TILE_W};
 use crate::par::prelude::*;
 use crate::render::Frame;
 use glam::DVec3;

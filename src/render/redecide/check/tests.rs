@@ -1,6 +1,7 @@
 use super::super::Redecide;
 use crate::accel::Accel;
-use crate::accel::tiles::{PACKETS, PacketLists, TILE_H, TILE_W};
+use crate::accel::tiles::{PACKETS, PacketLists};
+use crate::accel::{TILE_H, TILE_W};
 use crate::camera::Camera;
 use crate::kernel::Hit8;
 use crate::kernel::packet::{BLOCK_H, BLOCK_W, block_rays};
