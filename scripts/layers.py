@@ -66,10 +66,9 @@ LAYERS = {
         "lib",
     ],
     "lanecast-web": [
-        "abi",
-        "engine",
+        "engine report",
         "state",
-        "report",
+        "abi",
         "lib",
     ],
 }

@@ -116,7 +116,7 @@ pub unsafe extern "C" fn lc_load(
     let data = unsafe { take_buffer(data, data_len) };
     with(|s| match s.load(&name, &data) {
         Ok(loaded) => {
-            s.message = scene_json(loaded);
+            s.message = scene_json(loaded.scene(), loaded.bounds());
             0
         }
         Err(e) => {

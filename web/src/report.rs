@@ -1,7 +1,8 @@
 //! What the module reports back as JSON: a pick ([`Pick`]) and a scene's summary
 //! ([`scene_json`]).
 
-use crate::state::Loaded;
+use glam::DVec3;
+use lanecast::Scene;
 use std::fmt::Write as _;
 
 /// What a click on a primitive reports, as `--ids` and `--depth` would give it.
@@ -34,11 +35,11 @@ impl Pick {
 }
 
 /// A scene's summary, as JSON: its name, camera, the box around its primitives (`bounds`:
-/// min and max corners), primitive counts and warnings.
-pub fn scene_json(loaded: &Loaded) -> String {
-    let s = loaded.scene();
+/// min and max corners, as the session keeps them: `Loaded::bounds`), primitive counts and
+/// warnings.
+pub fn scene_json(s: &Scene, bounds: [DVec3; 2]) -> String {
     let c = s.camera;
-    let v = |v: glam::DVec3| format!("[{},{},{}]", v.x, v.y, v.z);
+    let v = |v: DVec3| format!("[{},{},{}]", v.x, v.y, v.z);
     let fov = c.fov_deg().map_or("null".to_string(), |f| f.to_string());
     let (spheres, triangles, quads) = s.counts();
     let mut warnings = String::new();
@@ -53,8 +54,8 @@ pub fn scene_json(loaded: &Loaded) -> String {
         v(c.look),
         v(c.up),
         lanecast::DEFAULT_FOV,
-        v(loaded.bounds()[0]),
-        v(loaded.bounds()[1]),
+        v(bounds[0]),
+        v(bounds[1]),
         s.shapes.len(),
     )
 }

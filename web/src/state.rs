@@ -474,7 +474,13 @@ mod tests {
         let at = (8 * 16 + 8) * 4;
         assert_ne!(plain[at..at + 3], lit[at..at + 3]);
         assert_eq!(plain[..4], lit[..4]); // background untouched
-        assert!(scene_json(s.loaded.as_ref().unwrap()).contains("\"primitives\":1"));
+        assert!(
+            scene_json(
+                s.loaded.as_ref().unwrap().scene(),
+                s.loaded.as_ref().unwrap().bounds()
+            )
+            .contains("\"primitives\":1")
+        );
     }
 
     /// A face of the bunny that covers two pixels or fewer at 160x120 still changes dozens when
@@ -543,6 +549,12 @@ mod tests {
         let e = s.render(16, 16, Some(far)).unwrap_err();
         assert!(!e.starts_with("far.sc"), "{e}");
         assert!(e.starts_with("this view cannot be rendered (camera eye 0 0 10000000000000000000000000 look 0 0 0): "), "{e}");
-        assert!(scene_json(s.loaded.as_ref().unwrap()).contains("\"bounds\":[[0,0,0],[1,1,0]]"));
+        assert!(
+            scene_json(
+                s.loaded.as_ref().unwrap().scene(),
+                s.loaded.as_ref().unwrap().bounds()
+            )
+            .contains("\"bounds\":[[0,0,0],[1,1,0]]")
+        );
     }
 }

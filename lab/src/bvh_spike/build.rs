@@ -13,6 +13,7 @@
 //! (Ize, "Robust BVH ray traversal", 2013: conservative bounds; the slab test's own rounding is
 //! covered in `traverse`).
 
+use super::triangle::Tri;
 use glam::{DVec3, Vec3};
 use lanecast::scene::{Scene, Shape};
 use rayon::prelude::*;
@@ -35,27 +36,6 @@ pub struct Node {
     /// Triangles in a leaf; 0 for an inner node, whose split axis is `axis`.
     pub count: u16,
     pub axis: u16,
-}
-
-/// A triangle as the tile test reads it: its f32 vertices, the scene id, and which of its
-/// edges run in their canonical direction (`triangle::EdgeSetup`).
-#[derive(Debug, Clone, Copy)]
-#[repr(C)]
-pub struct Tri {
-    pub v: [Vec3; 3],
-    pub id: i32,
-    /// Bit `i`: edge `v_i -> v_{i+1}` starts at the lexicographically smaller vertex.
-    pub canon: u32,
-}
-
-impl Tri {
-    /// The triangle of f32 vertices `v` with scene id `id`.
-    pub fn new(v: [Vec3; 3], id: i32) -> Tri {
-        let canon = (0..3).fold(0, |bits, i| {
-            bits | (super::triangle::before(v[i], v[(i + 1) % 3]) as u32) << i
-        });
-        Tri { v, id, canon }
-    }
 }
 
 /// The hierarchy: node 0 is the root; leaves index `tris`, stored in leaf order.

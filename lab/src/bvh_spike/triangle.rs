@@ -26,9 +26,29 @@
 //! when the ray is not grazing. The spike does not re-decide such
 //! rays in f64.
 
-use super::build::Tri;
 use glam::Vec3;
 use wide::f32x8;
+
+/// A triangle as the tile test reads it: its f32 vertices, the scene id, and which of its
+/// edges run in their canonical direction ([`EdgeSetup`]).
+#[derive(Debug, Clone, Copy)]
+#[repr(C)]
+pub struct Tri {
+    pub v: [Vec3; 3],
+    pub id: i32,
+    /// Bit `i`: edge `v_i -> v_{i+1}` starts at the lexicographically smaller vertex.
+    pub canon: u32,
+}
+
+impl Tri {
+    /// The triangle of f32 vertices `v` with scene id `id`.
+    pub fn new(v: [Vec3; 3], id: i32) -> Tri {
+        let canon = (0..3).fold(0, |bits, i| {
+            bits | (before(v[i], v[(i + 1) % 3]) as u32) << i
+        });
+        Tri { v, id, canon }
+    }
+}
 
 /// A triangle set up for one origin: the three edge normals, oriented for this triangle, the
 /// plane's normal and the numerator of `t`.
