@@ -202,7 +202,7 @@ def use_paths(tree):
 
 class Crate:
     def __init__(self, name, src, roots):
-        self.name, self.src = name, os.path.join(ROOT, src)
+        self.name, self.src = name, os.path.join(ROOT, src)  # an absolute src stays as it is
         self.modules = {}  # module path (tuple) -> file (relative to the crate's src)
         self.children = {}  # module path -> {child name: child path}
         self.texts = {}  # file -> code without comments, strings and test code
@@ -369,10 +369,12 @@ def sccs(nodes, edges):
     return out
 
 
-def check(name, show_edges):
-    src, roots = CRATES[name]
+def check(name, show_edges, src=None, layers=None):
+    """The errors of one crate (and a summary line printed)."""
+    src_default, roots = CRATES.get(name, ("src", ["lib.rs"]))
+    src = src or src_default
     crate = Crate(name, src, roots)
-    rank = {m: i for i, line in enumerate(LAYERS[name]) for m in line.split()}
+    rank = {m: i for i, line in enumerate(layers or LAYERS[name]) for m in line.split()}
     edges = crate.edges()
     errors = []
     tops = {rel: crate.top(rel) for rel in crate.texts}
@@ -409,11 +411,51 @@ def check(name, show_edges):
     return errors
 
 
+SELF_TEST = {
+    "lib.rs": "mod low;\nmod mid;\nmod top;\nmod pair;\n",
+    # An upward use (low -> mid), one in test code and one in a comment (neither counts).
+    "low.rs": "pub struct L;\npub fn f() { let _ = crate::mid::M; }\n"
+              "// crate::top::T\n#[cfg(test)]\nmod tests { use crate::top::T; }\n",
+    # A parent and its children: the children use the parent's items, the parent theirs (no
+    # cycle); two siblings use each other (a cycle).
+    "mid.rs": "mod a;\nmod b;\npub struct M;\npub use a::A;\npub fn g() { b::h(); }\n",
+    "mid/a.rs": "use super::M;\npub struct A;\npub fn k() { super::b::h(); }\n",
+    "mid/b.rs": "use super::{M, a::A};\npub fn h() { let _ = crate::low::L; }\n",
+    "top.rs": "use crate::mid::{self, A};\npub struct T;\n",
+    # A re-export is a name, not a use: pair names top's item, and top's layer is pair's.
+    "pair.rs": "pub use crate::top::T as U;\npub fn p() { let _: crate::mid::A; }\n",
+}
+
+
+def self_test():
+    """The check on a small crate written to break each rule once: it must find each."""
+    import tempfile
+    with tempfile.TemporaryDirectory() as tmp:
+        for rel, text in SELF_TEST.items():
+            os.makedirs(os.path.dirname(os.path.join(tmp, rel)), exist_ok=True)
+            open(os.path.join(tmp, rel), "w").write(text)
+        errors = check("self-test", False, tmp, ["low", "mid", "top pair", "lib"])
+    against = [e for e in errors if "is above" in e]
+    cycles = [e for e in errors if e.startswith("cycle among")]
+    ok = (len(against) == 1 and "low.rs uses" in against[0] and "mid.rs" in against[0]
+          and len(cycles) == 2 and "mid/a.rs" in cycles[0] and "mid/b.rs" in cycles[0]
+          and "low" in cycles[1] and "mid" in cycles[1])
+    if not ok:
+        print("self-test failed; the check gave:", *errors, sep="\n  ", file=sys.stderr)
+        sys.exit(1)
+    print("self-test: the upward use, the cycle of siblings and the cycle of modules found; "
+          "test code, comments and a parent with its children passed")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--edges", action="store_true", help="print every edge between files")
+    ap.add_argument("--self-test", action="store_true",
+                    help="check a small crate that breaks each rule once, first")
     ap.add_argument("crates", nargs="*", default=list(CRATES), help="crates to check")
     args = ap.parse_args()
+    if args.self_test:
+        self_test()
     errors = []
     for name in args.crates:
         errors += check(name, args.edges)
