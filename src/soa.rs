@@ -7,8 +7,9 @@
 //! front to back (no acceleration) or in the order its structure lists them.
 //! A type the scene does not contain has empty columns, and its loop is never entered.
 
-use crate::kernel::polygon::{QuadK, TriangleK};
-use crate::kernel::sphere::SphereK;
+use crate::kernel::Family;
+use crate::kernel::polygon::{Quad, QuadK, Triangle, TriangleK};
+use crate::kernel::sphere::{Sphere, SphereK};
 use crate::par::prelude::*;
 use crate::real::Real;
 use crate::scene::{Scene, Shape, Shapes};
@@ -113,23 +114,19 @@ pub struct Prepared<T> {
 impl Prepared<f64> {
     /// Constants of every shape of `scene` seen from `eye`, in f64.
     pub fn new(scene: &Scene, eye: DVec3) -> Prepared<f64> {
-        let mut p = Prepared::default();
-        for (id, shape) in scene.shapes.iter().enumerate() {
-            match shape {
-                Shape::Sphere { center, radius } => {
-                    p.spheres.push(SphereK::new(center, radius, eye), id)
-                }
-                Shape::Triangle(v) => {
-                    if let Some(k) = TriangleK::triangle(&v, eye) {
-                        p.triangles.push(k, id)
-                    }
-                }
-                Shape::Quad(v) => {
-                    if let Some(k) = QuadK::quad(&v, eye) {
-                        p.quads.push(k, id)
-                    }
+        /// Appends a primitive's constants from `eye` with its id, unless it covers no pixel
+        /// from there ([`Family::setup`]).
+        struct Add<'p>(&'p mut Prepared<f64>, usize, DVec3);
+        impl Visit<()> for Add<'_> {
+            fn visit<F: Stored>(self, g: F::Geometry) {
+                if let Some(k) = F::setup(&g, self.2) {
+                    F::group_mut(self.0).push(k, self.1);
                 }
             }
+        }
+        let mut p = Prepared::default();
+        for (id, shape) in scene.shapes.iter().enumerate() {
+            visit(shape, Add(&mut p, id, eye));
         }
         p
     }
@@ -151,36 +148,140 @@ impl Prepared<f64> {
     }
 }
 
-/// Where the scalar kernels read primitive `i` of each type (the index the acceleration
+/// Where the scalar kernels read primitive `i` of each family (the index the acceleration
 /// structures and the packed stores use) with its scene id: a store of records ([`Prepared`]),
 /// or records computed when asked ([`SceneRecords`]).
-pub trait Records<T> {
+pub trait Records<T: Real> {
     /// How many spheres, triangles and quads.
     fn counts(&self) -> [usize; 3];
-    /// Sphere `i`'s constants and id.
-    fn sphere(&self, i: usize) -> Option<(SphereK<T>, i32)>;
-    /// Triangle `i`'s constants and id.
-    fn triangle(&self, i: usize) -> Option<(TriangleK<T>, i32)>;
-    /// Quad `i`'s constants and id.
-    fn quad(&self, i: usize) -> Option<(QuadK<T>, i32)>;
+    /// Primitive `i` of family `F`: its constants and id (`None`: it covers no pixel).
+    fn record<F: Stored>(&self, i: usize) -> Option<(F::K<T>, i32)>;
 }
 
-impl<T: Copy> Records<T> for Prepared<T> {
+impl<T: Real> Records<T> for Prepared<T> {
     #[inline(always)]
     fn counts(&self) -> [usize; 3] {
         [self.spheres.len(), self.triangles.len(), self.quads.len()]
     }
     #[inline(always)]
-    fn sphere(&self, i: usize) -> Option<(SphereK<T>, i32)> {
-        Some((self.spheres.k[i], self.spheres.id[i]))
+    fn record<F: Stored>(&self, i: usize) -> Option<(F::K<T>, i32)> {
+        let g = F::group(self);
+        Some((g.k[i], g.id[i]))
+    }
+}
+
+/// The registration of the families with the stores: each family's index among the kinds
+/// (spheres 0, triangles 1, quads 2, as [`Order`], `counts` and the tiles number them) and
+/// where its records ([`Prepared`]) and columns ([`Packed`]) are kept.
+pub trait Stored: Family + Sized {
+    /// The family's index among the kinds.
+    const KIND: usize;
+    /// Its f32 columns.
+    type Columns: Columns<Self>;
+    /// Its records in `p`.
+    fn group<T: Real>(p: &Prepared<T>) -> &Group<Self::K<T>>;
+    /// Its records in `p`, to fill.
+    fn group_mut<T: Real>(p: &mut Prepared<T>) -> &mut Group<Self::K<T>>;
+    /// Its columns in `p`.
+    fn columns(p: &Packed) -> &Self::Columns;
+}
+
+/// A family's f32 columns as the packet loops read them.
+pub trait Columns<F: Family> {
+    /// Primitive `i`'s constants, gathered from the columns.
+    fn get(&self, i: usize) -> F::K<f32>;
+    /// Primitive `i`'s scene id, as f32 (exact below 2^24 = `limits::MAX_PRIMITIVES`).
+    fn id(&self, i: usize) -> f32;
+    /// How many primitives.
+    fn len(&self) -> usize;
+}
+
+/// The registration's one list of families, in kind order: `for_each_family!(F => expr)`
+/// evaluates `expr` once per family with `F` naming it (a type), so a loop over the families is
+/// as monomorphic as the three calls it stands for.
+macro_rules! for_each_family {
+    ($f:ident => $body:expr) => {{
+        {
+            type $f = $crate::kernel::Sphere;
+            $body;
+        }
+        {
+            type $f = $crate::kernel::Triangle;
+            $body;
+        }
+        {
+            type $f = $crate::kernel::Quad;
+            $body;
+        }
+    }};
+}
+pub(crate) use for_each_family;
+
+/// Something done to one primitive whatever its family: [`visit`] calls it with the family of
+/// a scene shape.
+pub trait Visit<R> {
+    /// Done to the geometry `g` of a primitive of family `F`.
+    fn visit<F: Stored>(self, g: F::Geometry) -> R;
+}
+
+/// `v` done to `shape` as a primitive of its family: the registration of the scene's shapes.
+#[inline(always)]
+pub fn visit<R>(shape: Shape, v: impl Visit<R>) -> R {
+    match shape {
+        Shape::Sphere { center, radius } => v.visit::<Sphere>((center, radius)),
+        Shape::Triangle(t) => v.visit::<Triangle>(t),
+        Shape::Quad(q) => v.visit::<Quad>(q),
+    }
+}
+
+impl Stored for Sphere {
+    const KIND: usize = 0;
+    type Columns = Spheres;
+    #[inline(always)]
+    fn group<T: Real>(p: &Prepared<T>) -> &Group<SphereK<T>> {
+        &p.spheres
     }
     #[inline(always)]
-    fn triangle(&self, i: usize) -> Option<(TriangleK<T>, i32)> {
-        Some((self.triangles.k[i], self.triangles.id[i]))
+    fn group_mut<T: Real>(p: &mut Prepared<T>) -> &mut Group<SphereK<T>> {
+        &mut p.spheres
     }
     #[inline(always)]
-    fn quad(&self, i: usize) -> Option<(QuadK<T>, i32)> {
-        Some((self.quads.k[i], self.quads.id[i]))
+    fn columns(p: &Packed) -> &Spheres {
+        &p.spheres
+    }
+}
+
+impl Stored for Triangle {
+    const KIND: usize = 1;
+    type Columns = Polygons<3>;
+    #[inline(always)]
+    fn group<T: Real>(p: &Prepared<T>) -> &Group<TriangleK<T>> {
+        &p.triangles
+    }
+    #[inline(always)]
+    fn group_mut<T: Real>(p: &mut Prepared<T>) -> &mut Group<TriangleK<T>> {
+        &mut p.triangles
+    }
+    #[inline(always)]
+    fn columns(p: &Packed) -> &Polygons<3> {
+        &p.triangles
+    }
+}
+
+impl Stored for Quad {
+    const KIND: usize = 2;
+    type Columns = Polygons<4>;
+    #[inline(always)]
+    fn group<T: Real>(p: &Prepared<T>) -> &Group<QuadK<T>> {
+        &p.quads
+    }
+    #[inline(always)]
+    fn group_mut<T: Real>(p: &mut Prepared<T>) -> &mut Group<QuadK<T>> {
+        &mut p.quads
+    }
+    #[inline(always)]
+    fn columns(p: &Packed) -> &Polygons<4> {
+        &p.quads
     }
 }
 
@@ -216,25 +317,10 @@ impl Records<f64> for SceneRecords<'_> {
     fn counts(&self) -> [usize; 3] {
         self.ids.map(|ids| ids.len())
     }
-    fn sphere(&self, i: usize) -> Option<(SphereK<f64>, i32)> {
-        match self.shape(0, i) {
-            (Shape::Sphere { center, radius }, id) => {
-                Some((SphereK::new(center, radius, self.eye), id))
-            }
-            _ => None,
-        }
-    }
-    fn triangle(&self, i: usize) -> Option<(TriangleK<f64>, i32)> {
-        match self.shape(1, i) {
-            (Shape::Triangle(v), id) => TriangleK::triangle(&v, self.eye).map(|k| (k, id)),
-            _ => None,
-        }
-    }
-    fn quad(&self, i: usize) -> Option<(QuadK<f64>, i32)> {
-        match self.shape(2, i) {
-            (Shape::Quad(v), id) => QuadK::quad(&v, self.eye).map(|k| (k, id)),
-            _ => None,
-        }
+    #[inline(always)]
+    fn record<F: Stored>(&self, i: usize) -> Option<(F::K<f64>, i32)> {
+        let (shape, id) = self.shape(F::KIND, i);
+        F::setup(&F::geometry(shape)?, self.eye).map(|k| (k, id))
     }
 }
 

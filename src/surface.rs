@@ -10,8 +10,8 @@
 //!   f64 ray, `RayTables::dir_x1`) and `f` the unit forward axis. Relative error a few units
 //!   of f32 rounding (`t` is the f32 depth): `t` itself is the only rounded input, so against
 //!   the exact hit the error is the depth's (within 1e-5 relative of the oracle's).
-//! - Normals, world coordinates, unit length, turned to face the eye (`n . (eye - P) > 0` for
-//!   a polygon, so both sides of a sheet read as seen):
+//! - Normals (each family's `Family::normal`), world coordinates, unit length, turned to face
+//!   the eye (`n . (eye - P) > 0` for a polygon, so both sides of a sheet read as seen):
 //!   - a triangle: `(B - A) x (C - A)`, a quad: `(C - A) x (D - B)` (its diagonals), the
 //!     plane normals the kernels use (`kernel::polygon`), normalised; exact to f64 rounding
 //!     whatever the distance, since only the vertices enter;
@@ -33,7 +33,8 @@
 use crate::Frame;
 use crate::camera::Camera;
 use crate::par::prelude::*;
-use crate::scene::{Scene, Shape};
+use crate::scene::Scene;
+use crate::soa::{Stored, Visit, visit};
 use glam::DVec3;
 
 impl Frame<f32> {
@@ -124,29 +125,16 @@ impl<'a> Surfaces<'a> {
     }
 
     /// The unit f64 normal facing the eye of primitive `id`, hit at distance `t` along the unit
-    /// ray `d`, and whether it is a polygon's (the same for every ray that hits it).
+    /// ray `d`, and whether it is a flat one's (the same for every ray that hits it): its
+    /// family's normal ([`Family::normal`](crate::kernel::Family::normal)).
     fn normal(&self, id: i32, d: DVec3, t: f32) -> (DVec3, bool) {
-        let eye = self.eye;
-        match self.scene.shapes.get(id as usize) {
-            Shape::Triangle([a, b, c]) => (facing((b - a).cross(c - a), a - eye), true),
-            Shape::Quad([a, b, c, dd]) => (facing((c - a).cross(dd - b), a - eye), true),
-            Shape::Sphere { center, radius } => {
-                let p = eye + d * f64::from(t);
-                let out = (p - center).normalize_or_zero();
-                // seen from inside, the eye looks at the inner side
-                let n = if (eye - center).length() < radius {
-                    -out
-                } else {
-                    out
-                };
-                (n, false)
+        struct At(DVec3, DVec3);
+        impl Visit<(DVec3, bool)> for At {
+            fn visit<F: Stored>(self, g: F::Geometry) -> (DVec3, bool) {
+                F::normal(&g, self.0, self.1)
             }
         }
+        let point = self.eye + d * f64::from(t);
+        visit(self.scene.shapes.get(id as usize), At(self.eye, point))
     }
-}
-
-/// `n` normalised and turned to face the eye, from which a point of the plane lies at `rel`.
-fn facing(n: DVec3, rel: DVec3) -> DVec3 {
-    let n = n.normalize_or_zero();
-    if n.dot(rel) > 0.0 { -n } else { n }
 }

@@ -19,14 +19,12 @@
 use super::build::{self, Built};
 use crate::camera::Camera;
 use crate::kernel::lanes::Lanes;
-use crate::kernel::methods::wide64::{Hit4d, polygon_x4d, sphere_x4d};
-use crate::kernel::polygon::PolyK;
+use crate::kernel::methods::wide64::Hit4d;
 use crate::kernel::{Hit, Hit8, HitLanes};
 use crate::real::{Real, V3, f32_down, f32_up};
 use crate::scene::Scene;
-use crate::soa::trace::ranges_x1;
-use crate::soa::trace::{polygons_x8, spheres_x8};
-use crate::soa::{Packed, Prepared, Records};
+use crate::soa::trace::{family_x8, ranges_x1};
+use crate::soa::{Packed, Prepared, Records, Stored, for_each_family};
 use wide::{f32x8, f64x4};
 
 /// One node: box, child or leaf index, and kind (bit 31: leaf; bits 0-1: split axis).
@@ -167,10 +165,11 @@ fn enters<L: Lanes>(n: &Node, inv: &[L; 3], best: L) -> bool {
 /// Nearest hits of the rays `d` among the primitives of `p` (packed in `bvh`'s leaf order).
 #[inline]
 pub fn trace_bvh_x8(p: &Packed, bvh: &Bvh, d: &[f32x8; 3], hit: &mut Hit8) {
-    walk_lanes(bvh, d, hit, |[s, t, q], h| {
-        spheres_x8(&p.spheres, s.0 as usize..s.1 as usize, d, h);
-        polygons_x8(&p.triangles, t.0 as usize..t.1 as usize, d, h);
-        polygons_x8(&p.quads, q.0 as usize..q.1 as usize, d, h);
+    walk_lanes(bvh, d, hit, |leaf, h| {
+        for_each_family!(F => {
+            let (a, b) = leaf[F::KIND];
+            family_x8::<F>(p, a as usize..b as usize, d, h)
+        });
     });
 }
 
@@ -206,34 +205,26 @@ pub fn trace_bvh_x4d(p: &impl Records<f64>, bvh: &Bvh, d: &[f64x4; 3], hit: &mut
 #[inline(always)]
 pub fn ranges_x4d(
     p: &impl Records<f64>,
-    [s, t, q]: [std::ops::Range<usize>; 3],
+    ranges: [std::ops::Range<usize>; 3],
     d: &[f64x4; 3],
     hit: &mut Hit4d,
 ) {
-    for i in s {
-        if let Some((k, id)) = p.sphere(i)
-            && let Some((m, tt)) = sphere_x4d(&k, d)
-        {
-            hit.update(m, tt, id as f64);
-        }
-    }
-    polygons_x4d(|i| p.triangle(i), t, d, hit);
-    polygons_x4d(|i| p.quad(i), q, d, hit);
+    for_each_family!(F => family_x4d::<F>(p, ranges[F::KIND].clone(), d, hit));
 }
 
-/// The polygons `range` (records from `get`) against four f64 rays `d`.
+/// The primitives `range` of family `F` in `p` against four f64 rays `d`.
 #[inline(always)]
-fn polygons_x4d<const N: usize>(
-    get: impl Fn(usize) -> Option<(PolyK<f64, N>, i32)>,
+fn family_x4d<F: Stored>(
+    p: &impl Records<f64>,
     range: std::ops::Range<usize>,
     d: &[f64x4; 3],
     hit: &mut Hit4d,
 ) {
     for i in range {
-        if let Some((k, id)) = get(i)
-            && let Some((m, tt)) = polygon_x4d(&k, d)
+        if let Some((k, id)) = p.record::<F>(i)
+            && let Some((m, t)) = F::hit_lanes(&k, d)
         {
-            hit.update(m, tt, id as f64);
+            hit.update(m, t, id as f64);
         }
     }
 }

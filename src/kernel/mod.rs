@@ -12,6 +12,7 @@
 //! when 0 < t; it replaces the current one when t is smaller, or when t is exactly equal and its
 //! primitive id is lower (exact ties go to the lower id).
 
+pub mod family;
 pub mod lanes;
 pub mod methods;
 pub mod packet;
@@ -19,7 +20,10 @@ pub mod polygon;
 pub mod sphere;
 pub mod triangle_setup;
 
+pub use family::Family;
 pub use lanes::HitLanes;
+pub use polygon::{Quad, Triangle};
+pub use sphere::Sphere;
 
 use crate::real::Real;
 use wide::f32x8;

@@ -46,9 +46,11 @@
 //! `tests::collapsed_edge_is_dropped`); the eye within ~u|V - O| of an edge's line gives an ill-conditioned edge plane.
 
 use crate::kernel::edge_eps;
+use crate::kernel::family::{Family, facing};
 use crate::kernel::lanes::{Lanes, dot_splat};
 use crate::limits::MIN_EDGE_ANGLE;
 use crate::real::{Real, V3, dot, v3};
+use crate::scene::Shape;
 use glam::DVec3;
 use wide::f32x8;
 
@@ -179,6 +181,85 @@ impl QuadK<f64> {
 
     fn raw_normal(v: &[DVec3; 4]) -> DVec3 {
         (v[2] - v[0]).cross(v[3] - v[1])
+    }
+}
+
+/// The triangle family (`triangle` lines and mesh faces): [`TriangleK`] and the edge-plane
+/// kernel [`polygon_x1`], [`polygon_lanes`].
+#[derive(Debug, Clone, Copy)]
+pub struct Triangle;
+
+/// The quad family (`quad` lines: planar, convex): [`QuadK`] and the edge-plane kernel.
+#[derive(Debug, Clone, Copy)]
+pub struct Quad;
+
+impl Family for Triangle {
+    const NAME: &'static str = "triangle";
+    /// Vertices A, B, C.
+    type Geometry = [DVec3; 3];
+    type K<T: Real> = TriangleK<T>;
+
+    #[inline(always)]
+    fn geometry(shape: Shape) -> Option<[DVec3; 3]> {
+        match shape {
+            Shape::Triangle(v) => Some(v),
+            _ => None,
+        }
+    }
+    #[inline(always)]
+    fn setup(v: &[DVec3; 3], eye: DVec3) -> Option<TriangleK<f64>> {
+        TriangleK::triangle(v, eye)
+    }
+    #[inline(always)]
+    fn cast<T: Real>(k: &TriangleK<f64>) -> TriangleK<T> {
+        k.cast()
+    }
+    #[inline(always)]
+    fn hit_x1<T: Real>(k: &TriangleK<T>, d: V3<T>) -> Option<T> {
+        polygon_x1(k, d)
+    }
+    #[inline(always)]
+    fn hit_lanes<L: Lanes>(k: &TriangleK<L::Scalar>, d: &[L; 3]) -> Option<(L, L)> {
+        polygon_lanes(k, d)
+    }
+    /// `(B - A) x (C - A)`, turned to the eye.
+    fn normal(&[a, b, c]: &[DVec3; 3], eye: DVec3, _: DVec3) -> (DVec3, bool) {
+        (facing((b - a).cross(c - a), a - eye), true)
+    }
+}
+
+impl Family for Quad {
+    const NAME: &'static str = "quad";
+    /// Vertices A, B, C, D in perimeter order.
+    type Geometry = [DVec3; 4];
+    type K<T: Real> = QuadK<T>;
+
+    #[inline(always)]
+    fn geometry(shape: Shape) -> Option<[DVec3; 4]> {
+        match shape {
+            Shape::Quad(v) => Some(v),
+            _ => None,
+        }
+    }
+    #[inline(always)]
+    fn setup(v: &[DVec3; 4], eye: DVec3) -> Option<QuadK<f64>> {
+        QuadK::quad(v, eye)
+    }
+    #[inline(always)]
+    fn cast<T: Real>(k: &QuadK<f64>) -> QuadK<T> {
+        k.cast()
+    }
+    #[inline(always)]
+    fn hit_x1<T: Real>(k: &QuadK<T>, d: V3<T>) -> Option<T> {
+        polygon_x1(k, d)
+    }
+    #[inline(always)]
+    fn hit_lanes<L: Lanes>(k: &QuadK<L::Scalar>, d: &[L; 3]) -> Option<(L, L)> {
+        polygon_lanes(k, d)
+    }
+    /// The diagonals' cross product `(C - A) x (D - B)`, turned to the eye.
+    fn normal(&[a, b, c, d]: &[DVec3; 4], eye: DVec3, _: DVec3) -> (DVec3, bool) {
+        (facing((c - a).cross(d - b), a - eye), true)
     }
 }
 

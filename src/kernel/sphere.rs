@@ -30,8 +30,10 @@
 //! rays exactly tangent to a sphere may hit or miss (disc ~ 0 within rounding).
 //! Proven by: `tests::far_small_sphere_*`, `tests::x8_equals_x1_*`, and the agreement tests.
 
+use crate::kernel::family::Family;
 use crate::kernel::lanes::Lanes;
 use crate::real::{Real, V3, dot, v3};
+use crate::scene::Shape;
 use glam::DVec3;
 use wide::f32x8;
 
@@ -71,6 +73,47 @@ impl SphereK<f64> {
             c: T::from_f64(self.c),
             inside: self.inside,
         }
+    }
+}
+
+/// The sphere family (`sphere CX CY CZ RADIUS`): [`SphereK`], [`sphere_x1`], [`sphere_lanes`].
+#[derive(Debug, Clone, Copy)]
+pub struct Sphere;
+
+impl Family for Sphere {
+    const NAME: &'static str = "sphere";
+    /// Centre and radius.
+    type Geometry = (DVec3, f64);
+    type K<T: Real> = SphereK<T>;
+
+    #[inline(always)]
+    fn geometry(shape: Shape) -> Option<(DVec3, f64)> {
+        match shape {
+            Shape::Sphere { center, radius } => Some((center, radius)),
+            _ => None,
+        }
+    }
+    #[inline(always)]
+    fn setup(&(center, radius): &(DVec3, f64), eye: DVec3) -> Option<SphereK<f64>> {
+        Some(SphereK::new(center, radius, eye))
+    }
+    #[inline(always)]
+    fn cast<T: Real>(k: &SphereK<f64>) -> SphereK<T> {
+        k.cast()
+    }
+    #[inline(always)]
+    fn hit_x1<T: Real>(k: &SphereK<T>, d: V3<T>) -> Option<T> {
+        sphere_x1(k, d)
+    }
+    #[inline(always)]
+    fn hit_lanes<L: Lanes>(k: &SphereK<L::Scalar>, d: &[L; 3]) -> Option<(L, L)> {
+        sphere_lanes(k, d)
+    }
+    /// Outward from the centre, or inward when the eye is inside (it sees the inner side).
+    fn normal(&(center, radius): &(DVec3, f64), eye: DVec3, point: DVec3) -> (DVec3, bool) {
+        let out = (point - center).normalize_or_zero();
+        let inside = (eye - center).length() < radius;
+        (if inside { -out } else { out }, false)
     }
 }
 

@@ -60,13 +60,13 @@
 use crate::accel::bvh::{ranges_x4d, trace_bvh_x1, trace_bvh_x4d};
 use crate::accel::{Bvh, Tiles};
 use crate::camera::{Camera, RayTables};
+use crate::kernel::Sphere;
 use crate::kernel::methods::wide64::{Hit4d, dir_x4d};
-use crate::kernel::polygon::{QuadK, TriangleK};
-use crate::kernel::sphere::SphereK;
 use crate::par::prelude::*;
 use crate::scene::{Scene, Shape};
 use crate::soa::trace::trace_x1;
-use crate::soa::{Packed, Records, SceneRecords};
+use crate::soa::{Packed, Records, SceneRecords, Stored};
+use std::any::Any;
 use std::cell::RefCell;
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 use wide::f64x4;
@@ -202,47 +202,35 @@ const ORACLE_SLOTS: usize = 64;
 const CACHE_SLOTS: usize = 256;
 
 /// [`SceneRecords`] with a direct-mapped cache per kind: slot `i % CACHE_SLOTS` holds the
-/// record of index `i` when its key is `i + 1`. Each kind's slots are allocated on its first
-/// use, so a strip with nothing to re-decide allocates nothing.
+/// record of index `i` when its key is `i + 1`. Each kind's slots (a `Slots` of its family's
+/// records) are allocated on its first use, so a strip with nothing to re-decide allocates
+/// nothing. Spheres are not cached: their constants cost less to compute than to cache.
 struct Cached<'a> {
     inner: SceneRecords<'a>,
-    triangles: Slots<TriangleK<f64>>,
-    quads: Slots<QuadK<f64>>,
+    slots: [RefCell<Option<Box<dyn Any>>>; 3],
 }
 
-type Slots<K> = RefCell<Vec<(usize, Option<(K, i32)>)>>;
-
-/// The cached record of index `i`, computed by `make` on a miss.
-#[inline(always)]
-fn cached<K: Copy>(
-    slots: &Slots<K>,
-    i: usize,
-    make: impl FnOnce() -> Option<(K, i32)>,
-) -> Option<(K, i32)> {
-    let mut slots = slots.borrow_mut();
-    if slots.is_empty() {
-        slots.resize(CACHE_SLOTS, (0, None));
-    }
-    let slot = &mut slots[i % CACHE_SLOTS];
-    if slot.0 != i + 1 {
-        *slot = (i + 1, make());
-    }
-    slot.1
-}
+type Slots<K> = Vec<(usize, Option<(K, i32)>)>;
 
 impl Records<f64> for Cached<'_> {
     fn counts(&self) -> [usize; 3] {
         self.inner.counts()
     }
-    fn sphere(&self, i: usize) -> Option<(SphereK<f64>, i32)> {
-        // a sphere's constants cost less to compute than to cache
-        self.inner.sphere(i)
-    }
-    fn triangle(&self, i: usize) -> Option<(TriangleK<f64>, i32)> {
-        cached(&self.triangles, i, || self.inner.triangle(i))
-    }
-    fn quad(&self, i: usize) -> Option<(QuadK<f64>, i32)> {
-        cached(&self.quads, i, || self.inner.quad(i))
+    #[inline(always)]
+    fn record<F: Stored>(&self, i: usize) -> Option<(F::K<f64>, i32)> {
+        if F::KIND == Sphere::KIND {
+            return self.inner.record::<F>(i);
+        }
+        let mut cell = self.slots[F::KIND].borrow_mut();
+        let slots = cell
+            .get_or_insert_with(|| Box::new(vec![(0, None::<(F::K<f64>, i32)>); CACHE_SLOTS]))
+            .downcast_mut::<Slots<F::K<f64>>>()
+            .expect("one family per kind");
+        let slot = &mut slots[i % CACHE_SLOTS];
+        if slot.0 != i + 1 {
+            *slot = (i + 1, self.inner.record::<F>(i));
+        }
+        slot.1
     }
 }
 
@@ -338,8 +326,7 @@ impl<'s> Redecide<'s> {
         Walk {
             records: Cached {
                 inner: SceneRecords::new(self.scene, packed, self.camera_eye),
-                triangles: RefCell::new(Vec::new()),
-                quads: RefCell::new(Vec::new()),
+                slots: Default::default(),
             },
             oracles: RefCell::new(Vec::new()),
             tiles,

@@ -2,9 +2,9 @@
 //! constant, one store per type, built straight from the scene on all threads and rearranged
 //! as an acceleration structure asks (`super::Order`).
 
-use super::{Group, IdSet, Order, Prepared, gather};
-use crate::kernel::polygon::{PolyK, QuadK, TriangleK};
-use crate::kernel::sphere::SphereK;
+use super::{Columns, Group, IdSet, Order, Prepared, gather};
+use crate::kernel::polygon::{PolyK, Quad, QuadK, Triangle, TriangleK};
+use crate::kernel::sphere::{Sphere, SphereK};
 use crate::kernel::triangle_setup::triangles_x4;
 use crate::par::prelude::*;
 use crate::scene::{Scene, Shape};
@@ -219,6 +219,51 @@ impl<const N: usize> Polygons<N> {
             nrm: [self.nrm[0][i], self.nrm[1][i], self.nrm[2][i]],
             p: self.p[i],
         }
+    }
+}
+
+impl Columns<Sphere> for Spheres {
+    #[inline(always)]
+    fn get(&self, i: usize) -> SphereK<f32> {
+        Spheres::get(self, i)
+    }
+    #[inline(always)]
+    fn id(&self, i: usize) -> f32 {
+        self.id[i]
+    }
+    #[inline(always)]
+    fn len(&self) -> usize {
+        Spheres::len(self)
+    }
+}
+
+impl Columns<Triangle> for Polygons<3> {
+    #[inline(always)]
+    fn get(&self, i: usize) -> TriangleK<f32> {
+        Polygons::get(self, i)
+    }
+    #[inline(always)]
+    fn id(&self, i: usize) -> f32 {
+        self.id[i]
+    }
+    #[inline(always)]
+    fn len(&self) -> usize {
+        Polygons::len(self)
+    }
+}
+
+impl Columns<Quad> for Polygons<4> {
+    #[inline(always)]
+    fn get(&self, i: usize) -> QuadK<f32> {
+        Polygons::get(self, i)
+    }
+    #[inline(always)]
+    fn id(&self, i: usize) -> f32 {
+        self.id[i]
+    }
+    #[inline(always)]
+    fn len(&self) -> usize {
+        Polygons::len(self)
     }
 }
 

@@ -11,44 +11,26 @@
 //! A type the scene lacks has an empty store and its loop runs zero times. The acceleration
 //! structures call the same loops over the ranges their leaves and tiles list.
 
-use super::{Packed, Polygons, Records, Spheres};
-use crate::kernel::polygon::{PolyK, polygon_x1, polygon_x8};
-use crate::kernel::sphere::{sphere_x1, sphere_x8};
+use super::{Columns, Packed, Records, Stored};
 use crate::kernel::{Hit, Hit8};
 use crate::real::{Real, V3};
 use std::ops::Range;
 use wide::f32x8;
 
-/// Nearest hits of the rays `d` (unit directions from the eye) among every primitive, folded
-/// into `hit`: the brute-force driver (`--accel none`).
+/// The eight rays `d` against every primitive of `p`, family by family in kind order.
 #[inline]
 pub fn trace_x8(p: &Packed, d: &[f32x8; 3], hit: &mut Hit8) {
-    spheres_x8(&p.spheres, 0..p.spheres.len(), d, hit);
-    polygons_x8(&p.triangles, 0..p.triangles.len(), d, hit);
-    polygons_x8(&p.quads, 0..p.quads.len(), d, hit);
+    for_each_family!(F => family_x8::<F>(p, 0..F::columns(p).len(), d, hit));
 }
 
-/// The spheres `range` of the store against eight rays.
+/// The primitives `range` of family `F` in `p` against the eight rays `d`, keeping the nearest
+/// hits in `hit` (the packet loop, shared with the BVH's leaves).
 #[inline(always)]
-pub fn spheres_x8(s: &Spheres, range: Range<usize>, d: &[f32x8; 3], hit: &mut Hit8) {
+pub fn family_x8<F: Stored>(p: &Packed, range: Range<usize>, d: &[f32x8; 3], hit: &mut Hit8) {
+    let cols = F::columns(p);
     for i in range {
-        if let Some((mask, t)) = sphere_x8(&s.get(i), d) {
-            hit.update(mask, t, s.id[i]);
-        }
-    }
-}
-
-/// The polygons `range` of a triangle or quad store against eight rays.
-#[inline(always)]
-pub fn polygons_x8<const N: usize>(
-    g: &Polygons<N>,
-    range: Range<usize>,
-    d: &[f32x8; 3],
-    hit: &mut Hit8,
-) {
-    for i in range {
-        if let Some((mask, t)) = polygon_x8(&g.get(i), d) {
-            hit.update(mask, t, g.id[i]);
+        if let Some((mask, t)) = F::hit_lanes(&cols.get(i), d) {
+            hit.update(mask, t, cols.id(i));
         }
     }
 }
@@ -62,8 +44,8 @@ pub fn trace_x1<T: Real>(p: &impl Records<T>, d: V3<T>) -> Hit<T> {
     hit
 }
 
-/// The spheres, triangles and quads in `ranges` of `p` against the ray `d`, keeping the nearest
-/// hit in `hit` (the scalar kernels' loop, shared with the BVH's leaves).
+/// The primitives in `ranges` of `p` (one range per kind) against the ray `d`, keeping the
+/// nearest hit in `hit` (the scalar kernels' loop, shared with the BVH's leaves).
 #[inline(always)]
 pub fn ranges_x1<T: Real>(
     p: &impl Records<T>,
@@ -71,29 +53,20 @@ pub fn ranges_x1<T: Real>(
     d: V3<T>,
     hit: &mut Hit<T>,
 ) {
-    let [s, t, q] = ranges;
-    for i in s {
-        if let Some((k, id)) = p.sphere(i)
-            && let Some(t) = sphere_x1(&k, d)
-        {
-            hit.update(t, id);
-        }
-    }
-    polygons_x1(|i| p.triangle(i), t, d, hit);
-    polygons_x1(|i| p.quad(i), q, d, hit);
+    for_each_family!(F => family_x1::<F, T>(p, ranges[F::KIND].clone(), d, hit));
 }
 
-/// The polygons `range` (records from `get`) against the ray `d`: triangles and quads alike.
+/// The primitives `range` of family `F` in `p` against the ray `d`.
 #[inline(always)]
-fn polygons_x1<T: Real, const N: usize>(
-    get: impl Fn(usize) -> Option<(PolyK<T, N>, i32)>,
+fn family_x1<F: Stored, T: Real>(
+    p: &impl Records<T>,
     range: Range<usize>,
     d: V3<T>,
     hit: &mut Hit<T>,
 ) {
     for i in range {
-        if let Some((k, id)) = get(i)
-            && let Some(t) = polygon_x1(&k, d)
+        if let Some((k, id)) = p.record::<F>(i)
+            && let Some(t) = F::hit_x1(&k, d)
         {
             hit.update(t, id);
         }

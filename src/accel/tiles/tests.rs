@@ -371,6 +371,7 @@ fn attached_values_are_rounded_down_and_follow_the_winner() {
 fn packets_left_unmarked_have_no_exact_hit_beyond_the_reach() {
     use crate::kernel::polygon::polygon_x1;
     use crate::kernel::sphere::sphere_x1;
+    use crate::kernel::{Quad, Sphere, Triangle};
     use crate::soa::{Records, SceneRecords};
     const ERROR: f64 = 1e-5;
     for (seed, fov) in [(5, 60.0), (6, 150.0), (7, 20.0)] {
@@ -386,7 +387,7 @@ fn packets_left_unmarked_have_no_exact_hit_beyond_the_reach() {
         let value = |kind: usize, i: usize| -> f32 {
             match kind {
                 0 => {
-                    let k = records.sphere(i).expect("a sphere").0;
+                    let k = records.record::<Sphere>(i).expect("a sphere").0;
                     if k.inside {
                         // (every packet would be marked)
                         return f32::INFINITY;
@@ -415,9 +416,15 @@ fn packets_left_unmarked_have_no_exact_hit_beyond_the_reach() {
                     }
                     let (kind, i) = e.kind_index();
                     let hit = match kind {
-                        SPHERE => records.sphere(i).and_then(|(k, _)| sphere_x1(&k, d)),
-                        TRIANGLE => records.triangle(i).and_then(|(k, _)| polygon_x1(&k, d)),
-                        _ => records.quad(i).and_then(|(k, _)| polygon_x1(&k, d)),
+                        SPHERE => records
+                            .record::<Sphere>(i)
+                            .and_then(|(k, _)| sphere_x1(&k, d)),
+                        TRIANGLE => records
+                            .record::<Triangle>(i)
+                            .and_then(|(k, _)| polygon_x1(&k, d)),
+                        _ => records
+                            .record::<Quad>(i)
+                            .and_then(|(k, _)| polygon_x1(&k, d)),
                     };
                     let Some(t64) = hit else { continue };
                     let reach = f64::from(e.attached()) * (1.0 - 2.0 * ERROR);

@@ -1,0 +1,53 @@
+//! A primitive family: what the engine asks of every sphere, triangle or quad, as one type.
+//!
+//! Each family is a type implementing [`Family`] in its kernel's file (`sphere.rs`: `Sphere`;
+//! `polygon.rs`: `Triangle` and `Quad`, which share the edge-plane kernel): where it is read
+//! from a scene shape, its eye-relative constants computed in f64 and rounded to the kernel's
+//! precision, its one-lane and lane-generic kernels (f32x8 packets, f64x4 for
+//! `--precision f64`), and the normal shading reads at a hit. The stores and their loops
+//! (`soa`) are written over families; `soa::Stored` registers each family's store.
+
+use crate::kernel::lanes::Lanes;
+use crate::real::{Real, V3};
+use crate::scene::Shape;
+use glam::DVec3;
+use std::fmt::Debug;
+
+/// One primitive family (see the module comment). Each kernel states its formula, precision
+/// and failure modes beside its own code; this trait only names them.
+pub trait Family: 'static {
+    /// The family's keyword in the scene format.
+    const NAME: &'static str;
+    /// What the scene holds of one primitive of the family.
+    type Geometry: Copy;
+    /// One primitive's eye-relative constants in precision `T`.
+    type K<T: Real>: Copy + Debug + PartialEq + Send + Sync;
+
+    /// The family's part of `shape`, or `None` when `shape` is of another family.
+    fn geometry(shape: Shape) -> Option<Self::Geometry>;
+
+    /// The constants of `g` seen from `eye`, in f64; `None` when it covers no pixel from there
+    /// (a polygon seen exactly edge-on).
+    fn setup(g: &Self::Geometry, eye: DVec3) -> Option<Self::K<f64>>;
+
+    /// The f64 constants rounded to `T`, once each.
+    fn cast<T: Real>(k: &Self::K<f64>) -> Self::K<T>;
+
+    /// Distance along the unit direction `d` from the eye to the hit, when it is ahead.
+    fn hit_x1<T: Real>(k: &Self::K<T>, d: V3<T>) -> Option<T>;
+
+    /// [`Family::hit_x1`] in the lanes of `L` with the same operations in the same order:
+    /// `None` when no lane can hit, else the mask of lanes that may and their distances (the
+    /// caller keeps those with 0 < t).
+    fn hit_lanes<L: Lanes>(k: &Self::K<L::Scalar>, d: &[L; 3]) -> Option<(L, L)>;
+
+    /// The unit f64 normal facing the eye at the hit `point` of `g` seen from `eye`, and
+    /// whether it is the same for every hit of that primitive (a flat one).
+    fn normal(g: &Self::Geometry, eye: DVec3, point: DVec3) -> (DVec3, bool);
+}
+
+/// `n` normalised and turned to face the eye, from which a point of the plane lies at `rel`.
+pub(crate) fn facing(n: DVec3, rel: DVec3) -> DVec3 {
+    let n = n.normalize_or_zero();
+    if n.dot(rel) > 0.0 { -n } else { n }
+}
