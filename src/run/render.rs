@@ -154,7 +154,7 @@ pub(crate) fn render_command(s: &RenderSettings) -> Result<()> {
     if let Some(source) = &s.views {
         return super::views::views_command(s, source);
     }
-    // hardening (issue 5): Ctrl-C / SIGTERM remove pending temporary files, exit 130.
+    // hardening: Ctrl-C / SIGTERM remove pending temporary files, exit 130.
     output::install_interrupt_cleanup();
     check_memory(s.view.width, s.view.height)?;
     let method = s.view.method;
