@@ -2,13 +2,13 @@
 //! automatic acceleration on one thread, the two renderers alternated frame by frame in one
 //! process (so the machine's noise falls on both alike), best and median of `ROUNDS` frames
 //! each. Prints a Markdown table: the ratio f32 time / auto time (auto's speed as a fraction of
-//! f32's; target at least 0.9) and the fraction of pixels auto re-decided in f64.
+//! f32's) and the fraction of pixels auto re-decided in f64, then the lowest ratio against 0.9.
 //!
 //! Two ratios, from the same frames: the ratio of the two medians, and the median of the
 //! rounds' own ratios (each round times one frame of each, back to back, which of the two
 //! goes first alternating from round to round). A burst of load on this shared machine that
 //! lasts a few frames falls on both frames of a round, so it moves the second far less than
-//! the first. The target is taken on the paired one; `LANECAST_BENCH_NULL=1` times f32
+//! the first. The last line reads the paired one; `LANECAST_BENCH_NULL=1` times f32
 //! against itself, the noise floor of both (docs/precision.md, "Speed"). Each renderer is built
 //! twice, first in one half of the rounds and second in the other.
 //!

@@ -3,8 +3,8 @@
 
 Reads target/criterion/**/new/{benchmark,estimates}.json (written by the last bench run) and
 prints, per seed scene and size, Mrays/s of each kernel on 1 and all threads (mean estimate),
-with the two ratios the targets are stated in: packet / scalar f32 on one thread, and packet on
-all threads / packet on one thread.
+with two ratios: packet / scalar f32 on one thread, and packet on all threads / packet on one
+thread.
 """
 import json
 import pathlib

@@ -19,19 +19,14 @@ R rounds, alternating the programs:
   view_median_ms (ray generation, rtcIntersect8, buffers); whole: build_ms + views_total_ms
   (its file reading excluded: its reader is not Embree; it writes no images).
 
-Prints a markdown table (medians over rounds) and each target as 'met' or 'MISSED':
-per-view median at least 3x faster than Embree's; the whole command at least 2x faster than
-Embree's build plus views. Then the issue's other targets, in the same rounds, for each scan:
+Prints a markdown table (medians over rounds), then a second table from the same rounds:
 
-- single view: `lanecast -i SCENE -size WxH -o DIR/one.bmp --threads T`, wall time (at most
-  0.6 s for the 3.3M scan);
-- peak memory: `peak_rss_bytes` of the many-view run's --stats over the triangles (at most
-  150 bytes a triangle);
+- single view, per scan: `lanecast -i SCENE -size WxH -o DIR/one.bmp --threads T`, wall time;
+- peak memory, per scan: `peak_rss_bytes` of the many-view run's --stats over the triangles;
 - parsing: `examples/parse_speed` (RAYON_NUM_THREADS=T), its OBJ grid read from the page cache
-  by `load_obj` and through a `mesh` line (at least 1 GB/s, the read included).
+  by `load_obj` and through a `mesh` line (MB/s, the read included).
 
-Per-view cost at 16 threads against 1 (at least 8x) needs a 16-core machine:
-scripts/views_scaling.sh.
+Per-view cost by thread count needs a machine with more cores: scripts/views_scaling.sh.
 """
 import argparse
 import json
@@ -136,7 +131,7 @@ def main():
           "| lanecast whole | Embree build + views | ratio |")
     print("|---|---:|---:|---:|---:|---:|---:|---:|")
     vs_embree.sh(["cargo", "build", "--release", "--example", "parse_speed"], cwd=ROOT)
-    verdicts, others = [], []
+    others = []
     with tempfile.TemporaryDirectory() as t:
         tmp = pathlib.Path(t)
         for levels in a.levels:
@@ -154,27 +149,19 @@ def main():
             print(f"| armadillo_{levels} | {tris:,} | {lv:.1f} ms ({med(runs_l, 'setup'):.1f} + "
                   f"{med(runs_l, 'render'):.1f}) | {ev:.1f} ms | {ev / lv:.2f}x | {lw / 1e3:.2f} s "
                   f"| {ew / 1e3:.2f} s | {ew / lw:.2f}x |")
-            verdicts.append((f"armadillo_{levels} per view >= 3x Embree", ev / lv >= 3.0))
-            verdicts.append((f"armadillo_{levels} whole >= 2x Embree", ew / lw >= 2.0))
             one = statistics.median(singles)
             peak = max(r["peak"] for r in runs_l) / tris
-            others.append((f"armadillo_{levels}: single view, whole command", f"{one:.2f} s",
-                           "<= 0.6 s" if levels == 3 else "none", one <= 0.6 if levels == 3 else None))
+            others.append((f"armadillo_{levels}: single view, whole command", f"{one:.2f} s"))
             others.append((f"armadillo_{levels}: peak memory of the many-view run",
-                           f"{peak:.0f} B a triangle", "<= 150", peak <= 150))
+                           f"{peak:.0f} B a triangle"))
         speeds = [parse_speed(a.threads) for _ in range(a.rounds)]
         for key in ("load_obj", "load_scene, mesh line"):
             mbs = statistics.median(sp[key] for sp in speeds)
-            others.append((f"parsing, 78.2 MB OBJ grid ({key})", f"{mbs:.0f} MB/s", ">= 1000",
-                           mbs >= 1000))
-    print()
-    for what, ok in verdicts:
-        print(f"- {what}: {'met' if ok else 'MISSED'}")
-    print("\n| target | measured | limit | verdict |\n|---|---:|---:|---|")
-    for what, value, limit, ok in others:
-        verdict = "none" if ok is None else "met" if ok else "MISSED"
-        print(f"| {what} | {value} | {limit} | {verdict} |")
-    print("\nPer-view cost at 16 threads against 1: scripts/views_scaling.sh on a 16-core machine.")
+            others.append((f"parsing, 78.2 MB OBJ grid ({key})", f"{mbs:.0f} MB/s"))
+    print("\n| measure | value |\n|---|---:|")
+    for what, value in others:
+        print(f"| {what} | {value} |")
+    print("\nPer-view cost by thread count: scripts/views_scaling.sh on a machine with more cores.")
 
 
 if __name__ == "__main__":

@@ -2,8 +2,8 @@
 //! primitives on, rebuilt for every camera) or the world engine (`--accel world`: the scene
 //! prepared once, each view costing what it sees). Chosen from the scene and the image size
 //! alone, never from how many frames have been or will be rendered, so that a frame is the
-//! same bits whether it is the first or the thousandth (issue contract: a view depends only on
-//! scene, camera, size and precision).
+//! same bits whether it is the first or the thousandth (a view depends only on scene, camera,
+//! size and precision).
 
 use lanecast::Scene;
 

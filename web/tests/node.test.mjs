@@ -143,7 +143,7 @@ test('a camera other than the scene\'s renders as the CLI renders a scene with t
   assert.notEqual(moved, text);
   const file = path.join(tmp, 'moved.sc');
   fs.writeFileSync(file, moved);
-  const got = lc.render(text, 200, 150, camera); // the API: text, size, camera
+  const got = lc.render(text, 200, 150, camera); // the module's API: text, size, camera
   const want = native(file, 200, 150, ACCEL[got.engine]);
   assert.ok(!want.error, want.error);
   assert.ok(asBytes(got.ids).equals(want.ids), 'ids differ');
