@@ -5,7 +5,8 @@
     python3 scripts/family_files.py sphere   # another family
 
 The probe is a family the scene format already has: every file whose code names it (an
-identifier or a keyword string containing the family's name, in any case, comments left out)
+identifier or a keyword string containing the family's name, in any case; comments and test
+code left out)
 is a place where the engine asks something of that family, so a new family would be written
 there too. Searched: the library, the lab, the fronts (Rust, Python, JavaScript), the fuzz
 dictionary and README.md; tests are not counted (a new family brings its own). Prints the files
@@ -17,7 +18,7 @@ import re
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from layers import strip  # noqa: E402  (comments and strings blanked)
+from layers import drop_test_code  # noqa: E402  (the same rule for test code as the layer check)
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PLACES = ["src", "lab/src", "python/src", "python/lanecast", "web/src", "web/www", "fuzz"]
@@ -25,7 +26,8 @@ SKIP = re.compile(r"(^|/)(tests?|target|node_modules|corpus|artifacts)(/|$)|(^|/
 
 
 def code_of(path, text):
-    """The text to search: Rust without comments (strings kept); other files as they are."""
+    """The text to search: Rust without comments and test code (strings kept); other files as
+    they are."""
     if not path.endswith(".rs"):
         return text
     out, i = [], 0
@@ -33,7 +35,7 @@ def code_of(path, text):
         out.append(text[i:m.start()])
         i = m.end()
     out.append(text[i:])
-    return "".join(out)
+    return drop_test_code("".join(out))[0]
 
 
 def main():

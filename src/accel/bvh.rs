@@ -23,7 +23,7 @@ use crate::kernel::methods::wide64::Hit4d;
 use crate::kernel::{Hit, Hit8, HitLanes};
 use crate::real::{Real, V3, f32_down, f32_up};
 use crate::scene::Scene;
-use crate::soa::trace::{family_x8, ranges_x1};
+use crate::soa::trace::{family_x8, ranges_x1, ranges_x4d};
 use crate::soa::{Packed, Prepared, Records, Stored, for_each_family};
 use wide::{f32x8, f64x4};
 
@@ -197,36 +197,6 @@ pub fn trace_bvh_x4d(p: &impl Records<f64>, bvh: &Bvh, d: &[f64x4; 3], hit: &mut
     walk_lanes(bvh, d, hit, |leaf, h| {
         ranges_x4d(p, leaf.map(|(a, b)| a as usize..b as usize), d, h)
     });
-}
-
-/// The spheres, triangles and quads in `ranges` of `p` against four f64 rays `d`, keeping the
-/// nearest hits in `hit` (the f64x4 method's loop, shared by the BVH's leaves and the
-/// re-decisions of `--precision auto` without acceleration).
-#[inline(always)]
-pub fn ranges_x4d(
-    p: &impl Records<f64>,
-    ranges: [std::ops::Range<usize>; 3],
-    d: &[f64x4; 3],
-    hit: &mut Hit4d,
-) {
-    for_each_family!(F => family_x4d::<F>(p, ranges[F::KIND].clone(), d, hit));
-}
-
-/// The primitives `range` of family `F` in `p` against four f64 rays `d`.
-#[inline(always)]
-fn family_x4d<F: Stored>(
-    p: &impl Records<f64>,
-    range: std::ops::Range<usize>,
-    d: &[f64x4; 3],
-    hit: &mut Hit4d,
-) {
-    for i in range {
-        if let Some((k, id)) = p.record::<F>(i)
-            && let Some((m, t)) = F::hit_lanes(&k, d)
-        {
-            hit.update(m, t, id as f64);
-        }
-    }
 }
 
 /// Nearest hit of one ray `d` among the primitives of `p` (in `bvh`'s leaf order) with the

@@ -57,13 +57,14 @@
 //! and only the pixels beyond it look their limits up (`check.rs`). A re-decision walks that
 //! pixel's candidates in f64.
 
-use crate::accel::bvh::{ranges_x4d, trace_bvh_x1, trace_bvh_x4d};
+use crate::accel::bvh::{trace_bvh_x1, trace_bvh_x4d};
 use crate::accel::{Bvh, Tiles};
 use crate::camera::{Camera, RayTables};
 use crate::kernel::Sphere;
 use crate::kernel::methods::wide64::{Hit4d, dir_x4d};
 use crate::par::prelude::*;
 use crate::scene::{Scene, Shape};
+use crate::soa::trace::ranges_x4d;
 use crate::soa::trace::trace_x1;
 use crate::soa::{Packed, Records, SceneRecords, Stored};
 use std::any::Any;
@@ -223,7 +224,10 @@ impl Records<f64> for Cached<'_> {
         }
         let mut cell = self.slots[F::KIND].borrow_mut();
         let slots = cell
-            .get_or_insert_with(|| Box::new(vec![(0, None::<(F::K<f64>, i32)>); CACHE_SLOTS]))
+            .get_or_insert_with(|| {
+                let fresh: Slots<F::K<f64>> = vec![(0, None); CACHE_SLOTS];
+                Box::new(fresh)
+            })
             .downcast_mut::<Slots<F::K<f64>>>()
             .expect("one family per kind");
         let slot = &mut slots[i % CACHE_SLOTS];

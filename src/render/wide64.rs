@@ -9,10 +9,10 @@ use super::{Frame, Structure, for_each_strip, prepare_f64};
 use crate::accel::Accel;
 use crate::accel::bvh::trace_bvh_x4d;
 use crate::camera::{Camera, RayTables};
-use crate::kernel::methods::wide64::{Hit4d, dir_x4d, polygon_x4d, sphere_x4d};
-use crate::kernel::polygon::PolyK;
+use crate::kernel::methods::wide64::{Hit4d, dir_x4d};
 use crate::scene::Scene;
-use crate::soa::{Group, Prepared};
+use crate::soa::trace::ranges_x4d;
+use crate::soa::{Prepared, Records};
 use wide::f64x4;
 
 /// Pixels per f64x4 row of a block.
@@ -57,15 +57,6 @@ impl Kit64 {
         self.structure.accel()
     }
 
-    #[inline(always)]
-    fn polygons<const N: usize>(g: &Group<PolyK<f64, N>>, d: &[f64x4; 3], hit: &mut Hit4d) {
-        for (k, &id) in g.k.iter().zip(&g.id) {
-            if let Some((m, t)) = polygon_x4d(k, d) {
-                hit.update(m, t, id as f64);
-            }
-        }
-    }
-
     /// Nearest hits of the four rays `d` of pixels `x0..x0 + 4` in row `y`.
     #[inline]
     pub fn trace_x4d(&self, [x0, y]: [usize; 2], d: &[f64x4; 3], hit: &mut Hit4d) {
@@ -74,13 +65,8 @@ impl Kit64 {
             Structure::Tiles(tiles) => tiles.trace_x4d(p, [x0, x0 + BW - 1, y], d, hit),
             Structure::Bvh(bvh) => trace_bvh_x4d(p, bvh, d, hit),
             Structure::None => {
-                for (k, &id) in p.spheres.k.iter().zip(&p.spheres.id) {
-                    if let Some((m, t)) = sphere_x4d(k, d) {
-                        hit.update(m, t, id as f64);
-                    }
-                }
-                Self::polygons(&p.triangles, d, hit);
-                Self::polygons(&p.quads, d, hit);
+                let [s, t, q] = p.counts();
+                ranges_x4d(p, [0..s, 0..t, 0..q], d, hit)
             }
         }
     }

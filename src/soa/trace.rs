@@ -5,17 +5,19 @@
 //! - One ray at a time (`trace_x1`, `ranges_x1`): in f64 the oracle, in f32 the baseline the
 //!   packet kernel's speedup is measured against. The records come from a store or are computed
 //!   when asked ([`Records`]).
-//! - Eight rays at a time (`trace_x8`, `spheres_x8`, `polygons_x8`): each primitive's constants
-//!   broadcast to the eight lanes from the columns of [`Packed`].
+//! - Eight rays at a time (`trace_x8`, `family_x8`): each primitive's constants broadcast to
+//!   the eight lanes from the columns of [`Packed`].
+//! - Four f64 rays at a time (`ranges_x4d`): `--precision f64`'s lanes, from the records.
 //!
 //! A type the scene lacks has an empty store and its loop runs zero times. The acceleration
 //! structures call the same loops over the ranges their leaves and tiles list.
 
 use super::{Columns, Packed, Records, Stored};
+use crate::kernel::methods::wide64::Hit4d;
 use crate::kernel::{Hit, Hit8};
 use crate::real::{Real, V3};
 use std::ops::Range;
-use wide::f32x8;
+use wide::{f32x8, f64x4};
 
 /// The eight rays `d` against every primitive of `p`, family by family in kind order.
 #[inline]
@@ -69,6 +71,38 @@ fn family_x1<F: Stored, T: Real>(
             && let Some(t) = F::hit_x1(&k, d)
         {
             hit.update(t, id);
+        }
+    }
+}
+
+/// The primitives in `ranges` of `p` (one range per kind) against four f64 rays `d`, keeping
+/// the nearest hits in `hit`: each family's kernel in f64x4 lanes, each lane the oracle's
+/// `hit_x1::<f64>` bit for bit (`--precision f64`'s loop, shared by its render without
+/// acceleration, the BVH's leaves, the tiles' one-ray walks and the re-decisions of
+/// `--precision auto`).
+#[inline(always)]
+pub fn ranges_x4d(
+    p: &impl Records<f64>,
+    ranges: [Range<usize>; 3],
+    d: &[f64x4; 3],
+    hit: &mut Hit4d,
+) {
+    for_each_family!(F => family_x4d::<F>(p, ranges[F::KIND].clone(), d, hit));
+}
+
+/// The primitives `range` of family `F` in `p` against four f64 rays `d`.
+#[inline(always)]
+fn family_x4d<F: Stored>(
+    p: &impl Records<f64>,
+    range: Range<usize>,
+    d: &[f64x4; 3],
+    hit: &mut Hit4d,
+) {
+    for i in range {
+        if let Some((k, id)) = p.record::<F>(i)
+            && let Some((m, t)) = F::hit_lanes(&k, d)
+        {
+            hit.update(m, t, id as f64);
         }
     }
 }

@@ -2,12 +2,12 @@
 //! method: a span of one tile's row, its list nearest first.
 
 use super::{TILE_H, TILE_W, Tiles, packet_bits};
-use crate::accel::bvh::ranges_x4d;
 use crate::kernel::Hit;
 use crate::kernel::methods::wide64::Hit4d;
 use crate::real::{Real, V3};
 use crate::soa::Records;
 use crate::soa::trace::ranges_x1;
+use crate::soa::trace::ranges_x4d;
 use wide::f64x4;
 
 impl Tiles {
@@ -86,7 +86,7 @@ impl Tiles {
 }
 
 /// The ranges (spheres, triangles, quads) holding just primitive `i` of kind `kind`, for the
-/// shared kernel loops (`soa::trace::ranges_x1`, `accel::bvh::ranges_x4d`).
+/// shared kernel loops (`soa::trace::ranges_x1`, `soa::trace::ranges_x4d`).
 #[inline(always)]
 fn only(kind: u32, i: usize) -> [std::ops::Range<usize>; 3] {
     let mut r = [0..0, 0..0, 0..0];
