@@ -2,7 +2,7 @@
 //! automatic acceleration on one thread, the two renderers alternated frame by frame in one
 //! process (so the machine's noise falls on both alike), best and median of `ROUNDS` frames
 //! each. Prints a Markdown table: the ratio f32 time / auto time (auto's speed as a fraction of
-//! f32's) and the fraction of pixels auto re-decided in f64, then the lowest ratio against 0.9.
+//! f32's) and the fraction of pixels auto re-decided in f64, then the lowest paired ratio.
 //!
 //! Two ratios, from the same frames: the ratio of the two medians, and the median of the
 //! rounds' own ratios (each round times one frame of each, back to back, which of the two
@@ -154,8 +154,5 @@ fn main() {
         );
     }
     println!();
-    println!(
-        "Lowest {other} speed / f32 (median of paired ratios): {worst:.3} (target at least 0.9: {}).",
-        if worst >= 0.9 { "met" } else { "MISSED" }
-    );
+    println!("Lowest {other} speed / f32 (median of paired ratios): {worst:.3}.");
 }

@@ -8,9 +8,9 @@ lanes are f32x8 either way) in the `profiling` profile (the release build with l
 so `cg_annotate` can name source lines), runs it under `valgrind --tool=cachegrind` for 1 and for
 FRAMES + 1 frames of each scene and precision (packet kernel, automatic acceleration, one
 thread, 1280x720), and prints the difference per frame: the render alone, without setup.
-Instructions are not time: memory stalls and latency do not show. The speed target is taken
-from `cargo bench --bench precision`; this shows where auto's own work goes and how much of
-it a change removed.
+Instructions are not time: memory stalls and latency do not show. Speed is measured by
+`cargo bench --bench precision`; this shows where auto's own work goes and how much of it a
+change removed.
 
     python3 scripts/icount.py scenes/scene7.sc spheres_256 [--frames 3] [--cache]
 

@@ -3,13 +3,20 @@
 # armadillo subdivided 3 times, 1920x1080, a VIEWS-view orbit, default 10) at THREADS (default
 # "16 2", each twice); prints each run's median per-view setup and render from --stats.
 #
-# Needs: A and B (two lanecast binaries), ORBIT (default ../shared/anchors/orbit_views.py),
-# python3. On the device machine: A=.dev/bin/lanecast_old B=.dev/bin/lanecast
-# ORBIT=.dev/orbit_views.py (../shared/anchors/embree/device.md says how to carry them).
+# Usage: bash scripts/views_ab.sh [A [B]], or A=... B=... bash scripts/views_ab.sh
+#   A      the first lanecast binary (required, as the first argument or in the environment)
+#   B      the second (default target/release/lanecast)
+#   ORBIT  the orbit generator (default ../shared/anchors/orbit_views.py)
+# Paths are relative to the repository root or absolute; needs python3. Example, a build kept
+# from before a change against the current one:
+#   cp target/release/lanecast target/lanecast_before   # then change, cargo build --release
+#   bash scripts/views_ab.sh target/lanecast_before target/release/lanecast
 set -u
 cd "$(dirname "$0")/.."
+A=${1:-${A:-}}
+B=${2:-${B:-target/release/lanecast}}
 ORBIT=${ORBIT:-../shared/anchors/orbit_views.py}
-for f in "${A:?A=first lanecast binary}" "${B:?B=second lanecast binary}" "$ORBIT"; do
+for f in "${A:?A=first lanecast binary (first argument)}" "$B" "$ORBIT"; do
   [ -e "$f" ] || { echo "views_ab.sh: $f is missing" >&2; exit 1; }
 done
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT

@@ -5,23 +5,34 @@
 # lanecast's load, median per-view setup + render (from --stats), output time and whole wall
 # time; Embree's build, median view and total. Writes into $OUT (default target/views-scaling).
 #
-# Needs: LANECAST (default target/release/lanecast), EMBREE (default target/embree/embree_cast,
-# built by scripts/vs_embree.py) and ORBIT (default ../shared/anchors/orbit_views.py); python3.
-# SCAN (optional) names an armadillo_3.obj already written by scripts/subdivide.py, to skip
-# writing one. On the 16-core device machine, with binaries carried as
-# ../shared/anchors/embree/device.md says:
-# LANECAST=.dev/bin/lanecast EMBREE=.dev/bin/embree_cast ORBIT=.dev/orbit_views.py
+# Environment (paths relative to the repository root or absolute):
+#   LANECAST    the lanecast binary (default target/release/lanecast, `cargo build --release`)
+#   EMBREE      the Embree caster (default target/embree/embree_cast, built by
+#               scripts/vs_embree.py)
+#   EMBREE_LIB  a directory holding libembree3.so.3, put first on LD_LIBRARY_PATH (default
+#               target/embree/lib, used only if it exists; otherwise the system's Embree 3, e.g.
+#               Debian's libembree-dev). A libembree3.so.3.xz there is unpacked beside it first.
+#   ORBIT       the orbit generator (default ../shared/anchors/orbit_views.py)
+#   SCAN        (optional) an armadillo_3.obj already written by scripts/subdivide.py, to skip
+#               writing one
+# and python3. Example, with both programs built elsewhere:
+#   LANECAST=/opt/lc/lanecast EMBREE=/opt/lc/embree_cast EMBREE_LIB=/opt/lc/lib \
+#     bash scripts/views_scaling.sh
 set -u
 cd "$(dirname "$0")/.."
 LANECAST=${LANECAST:-target/release/lanecast}
 EMBREE=${EMBREE:-target/embree/embree_cast}
+EMBREE_LIB=${EMBREE_LIB:-target/embree/lib}
 ORBIT=${ORBIT:-../shared/anchors/orbit_views.py}
 OUT=${OUT:-target/views-scaling}
 for f in "$LANECAST" "$EMBREE" "$ORBIT"; do
   [ -e "$f" ] || { echo "views_scaling.sh: $f is missing (see the comment at the top)" >&2; exit 1; }
 done
-if [ -f .dev/lib/libembree3.so.3.xz ]; then
-  xz -dk -f .dev/lib/libembree3.so.3.xz; export LD_LIBRARY_PATH=$PWD/.dev/lib
+if [ -d "$EMBREE_LIB" ]; then
+  if [ -f "$EMBREE_LIB/libembree3.so.3.xz" ] && [ ! -e "$EMBREE_LIB/libembree3.so.3" ]; then
+    xz -dk "$EMBREE_LIB/libembree3.so.3.xz"
+  fi
+  export LD_LIBRARY_PATH=$(realpath "$EMBREE_LIB")${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
 fi
 mkdir -p "$OUT"
 R=$OUT/results.txt
