@@ -3,10 +3,10 @@
 //! change or go in any release; a caller that renders images needs only the crate root.
 //!
 //! Each module here is the crate's own module of that name, re-exported whole (`kernel` is
-//! the crate's `kernel`, and so on): the kernels one primitive family at a time and the other
-//! intersection methods ([`kernel`]), the primitives prepared as records and SoA columns
+//! the crate's `kernel`, and so on): the kernels one primitive family at a time, in f32x8 and
+//! f64x4 lanes ([`kernel`]), the primitives prepared as records and SoA columns
 //! ([`soa`]), the acceleration ([`accel`]), the ray tables ([`camera`]), rendering's parts
-//! ([`render`]: one kernel set up and timed alone, the method drivers, the f64 oracle), the
+//! ([`render`]: one kernel set up and timed alone, f64x4 packets, `--precision auto`), the
 //! scene reader's stages ([`scene`]), shading's constants ([`shade`]) and the scalar type the
 //! generic kernels are written over ([`real`]).
 
@@ -21,7 +21,7 @@ pub mod camera {
 }
 
 /// Intersection kernels: one file per primitive family, 1-lane and 8-lane forms side by side,
-/// the loops that drive them, and the other intersection methods (`methods`).
+/// their f64x4 form (`wide64`) and the loops that drive them.
 pub mod kernel {
     pub use crate::kernel::*;
 }
@@ -32,7 +32,7 @@ pub mod real {
 }
 
 /// Rendering's parts: one kernel's setup ([`Setup`](render::Setup)), the packet renderer
-/// alone, the method drivers and the f64 oracle (`kits`), `--precision auto` (`redecide`).
+/// alone, f64x4 packets (`wide64`), `--precision auto` (`redecide`).
 pub mod render {
     pub use crate::render::*;
 }

@@ -1,7 +1,9 @@
 //! Intersection kernels. Each primitive family has its own file (`sphere.rs`; `polygon.rs` for
 //! triangles and quads) holding its formula, its per-primitive constants and its 1-lane (`*_x1`, generic over f32/f64) and 8-lane (`*_x8`,
 //! `wide::f32x8`) forms side by side. The loops that drive them are `scalar.rs` (one ray at a
-//! time over every primitive: the oracle in f64) and `packet.rs` (8 rays at a time).
+//! time over every primitive: the oracle in f64) and `packet.rs` (8 rays at a time); `wide64.rs`
+//! is the same kernels in `wide::f64x4` lanes (`--precision f64`). The other intersection
+//! methods the accuracy lab measures live in the lab crate (`lab/src/methods/`).
 //!
 //! Every kernel works in eye-relative coordinates: all primary rays share the eye as origin, so
 //! each primitive's constants are computed once, in f64, relative to the eye, and only then
@@ -12,12 +14,12 @@
 //! primitive id is lower (exact ties go to the lower id).
 
 pub mod lanes;
-pub mod methods;
 pub mod packet;
 pub mod polygon;
 pub mod scalar;
 pub mod sphere;
 pub mod triangle_setup;
+pub mod wide64;
 
 pub use lanes::HitLanes;
 

@@ -60,10 +60,10 @@
 use crate::accel::bvh::{ranges_x4d, trace_bvh_x1, trace_bvh_x4d};
 use crate::accel::{Bvh, Tiles};
 use crate::camera::{Camera, RayTables};
-use crate::kernel::methods::wide64::{Hit4d, dir_x4d};
 use crate::kernel::polygon::{QuadK, TriangleK};
 use crate::kernel::scalar::trace_x1;
 use crate::kernel::sphere::SphereK;
+use crate::kernel::wide64::{Hit4d, dir_x4d};
 use crate::par::prelude::*;
 use crate::scene::{Scene, Shape};
 use crate::soa::{Packed, Records, SceneRecords};
@@ -404,7 +404,7 @@ impl<'s> Redecide<'s> {
     }
 
     /// The oracle's hits for the pixels `x0..x0 + 4` of row `y` in the lanes of `lanes` (bits),
-    /// in f64x4 lanes (`kernel::methods::wide64`, each lane the oracle's scalar answer bit for
+    /// in f64x4 lanes (`kernel::wide64`, each lane the oracle's scalar answer bit for
     /// bit), depths rounded once to f32.
     fn trace_row(&self, walk: &Walk, (x0, y): (usize, usize), lanes: u32) -> ([f32; 4], [f32; 4]) {
         let t = &self.tables;

@@ -4,8 +4,8 @@
 use super::{TILE_H, TILE_W, Tiles, packet_bits};
 use crate::accel::bvh::ranges_x4d;
 use crate::kernel::Hit;
-use crate::kernel::methods::wide64::Hit4d;
 use crate::kernel::scalar::ranges_x1;
+use crate::kernel::wide64::Hit4d;
 use crate::real::{Real, V3};
 use crate::soa::Records;
 use wide::f64x4;
