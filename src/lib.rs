@@ -60,9 +60,9 @@
 //! - [`limits`]: every resource limit enforced; [`compare`]: the packet kernel against the
 //!   f64 oracle, pixel by pixel (`lanecast compare`).
 //!
-//! Image sizes are `u32` throughout. The engine's inner layers (kernels, primitive stores,
-//! acceleration structures) are opened under [`experimental`], for the accuracy lab, the
-//! benches and the tests, with no stability promise. The other intersection methods
+//! Image sizes are `u32` throughout. The parts of the engine's inner layers (kernels,
+//! primitive stores, ray tables, one kernel's setup) that the accuracy lab, the benches and
+//! the tests use are named under [`experimental`], with no stability promise. The other intersection methods
 //! (Möller–Trumbore, watertight, ...) are the lab's (`lab/`), not the engine's.
 //!
 //! # Features
@@ -89,9 +89,10 @@
 //! Modules, lowest layer first (lower layers never import higher ones): `scene` (parse,
 //! validate, meshes) -> `camera`, `soa` -> `kernel` -> `accel` -> `render` (and `frame`) ->
 //! `shade`, `output` -> `compare` -> the command line (`cli`, `run`, `progress`, `stats`:
-//! feature `cli`). `error`, `limits`, `precision`, `real` and `par` (rayon, or its sequential stand-in) are shared by all. Only [`scene`],
-//! [`output`], [`limits`] and [`compare`] are public as modules; the others are opened as
-//! they are under [`experimental`].
+//! feature `cli`). `error`, `limits`, `precision`, `real` and `par` (rayon, or its
+//! sequential stand-in) are shared by all. Only [`scene`], [`output`], [`limits`],
+//! [`compare`] and [`world`] are public as modules; [`experimental`] names a few items of the
+//! others.
 
 #![warn(missing_docs)]
 

@@ -72,13 +72,6 @@ pub fn closer<T: Real>(t: T, id: i32, best_t: T, best_id: i32) -> bool {
     t > T::ZERO && (t < best_t || (t == best_t && id < best_id))
 }
 
-/// Eight rays' directions (unit vectors, origin at the eye).
-#[derive(Debug, Clone, Copy)]
-pub struct Ray8 {
-    /// The x, y and z components, one ray per lane.
-    pub d: [f32x8; 3],
-}
-
 /// The nearest hits of eight rays, ids as f32 (see [`HitLanes`]).
 pub type Hit8 = HitLanes<f32x8>;
 

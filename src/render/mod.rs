@@ -346,18 +346,8 @@ pub(crate) fn packet_blocks<const BW: usize>(
     (frame, redone)
 }
 
-/// Renders one ray at a time with the scalar kernel in precision `T`.
-pub fn render_scalar<T: Real>(
-    p: &Prepared<T>,
-    tables: &RayTables<T>,
-    width: usize,
-    height: usize,
-) -> Frame<T> {
-    render_scalar_counting(p, tables, &Structure::None, width, height, None)
-}
-
-/// [`render_scalar`] through the acceleration `accel` (bit-identical to without), counting
-/// finished strips in `progress`.
+/// Renders one ray at a time with the scalar kernel in precision `T`, through the acceleration
+/// `accel` (bit-identical to without), counting finished strips in `progress`.
 pub(crate) fn render_scalar_counting<T: Real>(
     p: &Prepared<T>,
     tables: &RayTables<T>,

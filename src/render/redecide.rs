@@ -249,11 +249,12 @@ impl Records<f64> for Cached<'_> {
 impl<'s> Redecide<'s> {
     /// The trusted distances of every primitive of `packed` (which `scene` seen by `camera`
     /// was packed into), and the camera's f64 ray tables.
-    pub fn new(scene: &'s Scene, camera: &Camera, packed: &Packed) -> Redecide<'s> {
+    #[cfg(test)]
+    pub(crate) fn new(scene: &'s Scene, camera: &Camera, packed: &Packed) -> Redecide<'s> {
         Redecide::new_in(scene, camera, packed, Spare::default())
     }
 
-    /// [`Redecide::new`], the per-primitive buffers written into `spare`'s.
+    /// `Redecide::new`, the per-primitive buffers written into `spare`'s.
     pub(crate) fn new_in(
         scene: &'s Scene,
         camera: &Camera,
