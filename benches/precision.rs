@@ -21,7 +21,7 @@
 
 use lanecast::Camera;
 use lanecast::scene::{Scene, load_scene};
-use lanecast::{Method, Options, Renderer};
+use lanecast::{Options, Precision, Renderer};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -44,9 +44,9 @@ fn cases() -> Vec<(String, PathBuf, u32, u32)> {
     v
 }
 
-fn renderer<'s>(scene: &'s Scene, camera: &Camera, method: Method) -> Renderer<'s> {
+fn renderer<'s>(scene: &'s Scene, camera: &Camera, precision: Precision) -> Renderer<'s> {
     let options = Options {
-        method,
+        precision,
         ..Options::default()
     };
     Renderer::new(scene, camera, &options).expect("f32 and auto take every scene")
@@ -106,14 +106,18 @@ fn main() {
         // triangles_65536 the renderer built second ran 3-5% faster in the null test, which
         // favoured whichever was built second.
         let (mut tf, mut ta, mut redone) = (Vec::new(), Vec::new(), 0);
-        let second = if null { Method::Default } else { Method::Auto };
+        let second = if null {
+            Precision::F32
+        } else {
+            Precision::Auto
+        };
         for half in 0..2 {
             let (f32r, auto) = if half == 0 {
-                let f = renderer(&scene, &camera, Method::Default);
+                let f = renderer(&scene, &camera, Precision::F32);
                 (f, renderer(&scene, &camera, second))
             } else {
                 let a = renderer(&scene, &camera, second);
-                (renderer(&scene, &camera, Method::Default), a)
+                (renderer(&scene, &camera, Precision::F32), a)
             };
             pool.install(|| {
                 for round in 0..rounds.div_ceil(2) {

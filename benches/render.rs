@@ -8,7 +8,7 @@ use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_m
 use lanecast::Accel;
 use lanecast::Camera;
 use lanecast::DEFAULT_FOV;
-use lanecast::experimental::render::{Kernel, PacketScene, Setup, render_packet_blocks};
+use lanecast::experimental::render::{PacketScene, Plain, Setup, render_packet_blocks};
 use lanecast::scene::load_scene;
 use std::hint::black_box;
 use std::path::Path;
@@ -17,11 +17,11 @@ use std::time::Duration;
 /// `packet`: the default renderer (automatic acceleration: a BVH here); `packet_none`: the same
 /// packet kernel testing every primitive, the like-for-like partner of the scalar kernels,
 /// which test every primitive too.
-const KERNELS: [(&str, Kernel, Accel); 4] = [
-    ("packet", Kernel::Packet, Accel::Auto),
-    ("packet_none", Kernel::Packet, Accel::None),
-    ("scalar_f32", Kernel::ScalarF32, Accel::None),
-    ("scalar_f64", Kernel::ScalarF64, Accel::None),
+const KERNELS: [(&str, Plain, Accel); 4] = [
+    ("packet", Plain::Packet, Accel::Auto),
+    ("packet_none", Plain::Packet, Accel::None),
+    ("scalar_f32", Plain::ScalarF32, Accel::None),
+    ("scalar_f64", Plain::ScalarF64, Accel::None),
 ];
 
 fn seed_scenes(c: &mut Criterion) {

@@ -11,7 +11,7 @@
 //! hits measured.
 
 use lanecast::{Camera, load_scene};
-use lanecast::{Method, Options, Renderer};
+use lanecast::{Options, Precision, Renderer};
 use std::time::Instant;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -20,9 +20,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let [scene, precision, frames, rest @ ..] = args.as_slice() else {
         return Err(usage.into());
     };
-    let method = match precision.as_str() {
-        "f32" => Method::Default,
-        "auto" => Method::Auto,
+    let precision = match precision.as_str() {
+        "f32" => Precision::F32,
+        "auto" => Precision::Auto,
         _ => return Err(usage.into()),
     };
     let frames: usize = frames.parse().map_err(|_| usage)?;
@@ -36,7 +36,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let scene = load_scene(std::path::Path::new(scene))?;
     let camera = Camera::for_scene(&scene, w, h, None)?;
     let options = Options {
-        method,
+        precision,
         ..Options::default()
     };
     let renderer = Renderer::new(&scene, &camera, &options)?;
@@ -52,7 +52,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             redone,
         )
     });
-    println!("{precision}: {ms:.3} ms per frame, {redone} pixels re-decided");
+    println!(
+        "{}: {ms:.3} ms per frame, {redone} pixels re-decided",
+        precision.name()
+    );
     if let Some(w) = renderer.auto_work() {
         println!(
             "auto, last frame: {} of {} packets carried the trusted distance ({:.1}%), {} hits measured",

@@ -21,7 +21,7 @@ use lanecast::experimental::scene::range::f32_range_from;
 use lanecast::experimental::scene::range_clusters::RangeClusters;
 use lanecast::experimental::soa::Packed;
 use lanecast::scene::views::orbit;
-use lanecast::{Camera, Method, Options, Renderer, load_scene};
+use lanecast::{Camera, Options, Precision, Renderer, load_scene};
 use std::time::Instant;
 
 fn best<T>(repeat: usize, mut f: impl FnMut() -> T) -> f64 {
@@ -51,8 +51,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let views: usize = views.parse()?;
     let repeat: usize = rest.first().map_or(Ok(3), |r| r.parse())?;
     let scene = load_scene(std::path::Path::new(scene))?;
-    let options = |method| Options {
-        method,
+    let options = |precision| Options {
+        precision,
         ..Options::default()
     };
     let names = [
@@ -76,9 +76,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let (s, n) = clusters.settled(eye);
         settled = (settled.0 + s, settled.1 + n);
         times[2].push(best(repeat, || Packed::from_scene(&scene, eye)));
-        let f32_ = options(Method::Default);
+        let f32_ = options(Precision::F32);
         times[3].push(best(repeat, || Renderer::new(&scene, &camera, &f32_)));
-        let auto = options(Method::Auto);
+        let auto = options(Precision::Auto);
         times[4].push(best(repeat, || Renderer::new(&scene, &camera, &auto)));
         let r = Renderer::new(&scene, &camera, &auto)?;
         times[5].push(best(repeat, || r.render()));

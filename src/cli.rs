@@ -6,8 +6,8 @@
 //!
 //! After clap, the flags the user typed (clap's `ValueSource::CommandLine`, as opposed to
 //! defaults) are checked against each other before any work: a flag that cannot apply to the
-//! rest (an acceleration the method or kernel does not use, a precision the method or kernel
-//! contradicts, threads a one-thread method cannot use, a seed the palette ignores) is a usage
+//! rest (an acceleration the kernel does not use, a precision the kernel contradicts, a seed
+//! the palette ignores) is a usage
 //! error (exit 2) that names it and only flags that were typed. README "Valid flag
 //! combinations" is the table of these rules.
 
@@ -19,7 +19,7 @@ mod views;
 use crate::error::{Error, Result};
 use crate::output::ImageFormat;
 use crate::shade::{ColorMode, Variation};
-pub use args::{AccelArg, KernelArg};
+pub use args::KernelArg;
 use args::{Cli, Sub, View};
 pub use camera::CameraOverrides;
 use camera::parse_vec3;
@@ -79,8 +79,8 @@ pub struct ViewSettings {
     pub fov: Option<f64>,
     pub threads: Option<usize>,
     pub accel: crate::accel::Accel,
-    /// Intersection method (`--method`, with `--precision f64` meaning `f64x4`).
-    pub method: crate::render::Method,
+    /// The precision (`--precision`; a scalar kernel's own).
+    pub precision: crate::Precision,
     /// Camera overrides from `--eye`, `--look`, `--up`, each with the flag as typed.
     pub camera: CameraOverrides,
 }
@@ -128,7 +128,7 @@ pub enum Command {
 }
 
 /// Parses the full argument list (program name first), then checks that every flag the user
-/// typed applies to the others (`view`, `method`, `check_render`; README "Valid flag
+/// typed applies to the others (`view`, `precision`, `check_render`; README "Valid flag
 /// combinations") before any work is done: a flag that cannot apply is a usage error naming
 /// it, never dropped.
 pub fn parse(args: impl IntoIterator<Item = OsString>) -> Result<Command> {
@@ -205,7 +205,6 @@ fn parse_raw(raw: &[OsString]) -> Result<Command> {
         None => {
             let typed = Typed { matches: &matches };
             let r = cli.render;
-            let flag = method_flag(&r.view, &typed);
             let view = view(r.view, &typed, r.kernel)?;
             let source = views::source(r.views, r.orbit);
             let output = match r.output {
@@ -239,7 +238,7 @@ fn parse_raw(raw: &[OsString]) -> Result<Command> {
                 skip_existing: r.skip_existing,
                 save_views: r.save_views,
             };
-            check_render(&settings, &typed, &flag)?;
+            check_render(&settings, &typed)?;
             views::check(&settings, &typed)?;
             Ok(Command::Render(settings))
         }
@@ -301,17 +300,8 @@ impl Typed<'_> {
     }
 }
 
-/// `n` and `noun`, with an `s` unless `n` is 1.
-fn count(n: usize, noun: &str) -> String {
-    if n == 1 {
-        format!("1 {noun}")
-    } else {
-        format!("{n} {noun}s")
-    }
-}
-
 /// The shared options resolved for `kernel` (`simd` for `compare`), refusing the typed
-/// `--accel` that the method or kernel cannot use.
+/// `--precision` that the kernel contradicts.
 fn view(v: View, typed: &Typed, kernel: KernelArg) -> Result<ViewSettings> {
     let (width, height) = parse_size(&v.size)?;
     if let Some(fov) = v.fov {
@@ -328,19 +318,8 @@ fn view(v: View, typed: &Typed, kernel: KernelArg) -> Result<ViewSettings> {
             crate::limits::MAX_THREADS
         )));
     }
-    let method = method(&v, typed, kernel)?;
+    let precision = precision(&v, typed, kernel)?;
     let accel: crate::accel::Accel = v.accel.into();
-    if method.is_brute_force()
-        && typed.has("accel")
-        && !matches!(v.accel, AccelArg::Auto | AccelArg::None)
-    {
-        return Err(Error::usage(format!(
-            "--accel {}: {} runs the brute-force driver of the accuracy lab, which tests every \
-             primitive with no acceleration; use --accel none (or auto), or the default method",
-            accel.name(),
-            method_flag(&v, typed),
-        )));
-    }
     Ok(ViewSettings {
         input: v.input.expect("clap requires --input"),
         width,
@@ -348,7 +327,7 @@ fn view(v: View, typed: &Typed, kernel: KernelArg) -> Result<ViewSettings> {
         fov: v.fov,
         threads: v.threads,
         accel,
-        method,
+        precision,
         camera: CameraOverrides {
             eye: v
                 .eye
@@ -365,80 +344,27 @@ fn view(v: View, typed: &Typed, kernel: KernelArg) -> Result<ViewSettings> {
     })
 }
 
-/// The typed flag that chose a method other than the default: `--method NAME`, or
-/// `--precision f64` when only that was typed.
-fn method_flag(v: &View, typed: &Typed) -> String {
-    if typed.has("method") {
-        format!("--method {}", v.method)
-    } else {
-        format!("--precision {} (the f64x4 method)", v.precision)
-    }
-}
-
-/// The method named by `--method` and `--precision` for `kernel`, refusing the pairs that
-/// contradict each other. The messages name only flags the user typed: a value left at its
-/// default cannot contradict a typed one (the defaults, `simd`, `eplane+stable` and `f32`,
-/// agree with every choice of the other two).
-fn method(v: &View, typed: &Typed, kernel: KernelArg) -> Result<crate::render::Method> {
-    use crate::render::Method;
-    let m = Method::parse(&v.method).expect("clap checked the name");
-    let precision = v.precision.as_str();
-    if let Some(own) = kernel.precision() {
-        // a scalar kernel (typed: the default is simd): it traces with the default method's
-        // formulas in its own precision
-        if m != Method::Default {
-            return Err(Error::usage(format!(
-                "--method {}: methods apply to --kernel simd only; --kernel {} traces one ray at \
-                 a time with the default method ({}) in {own}",
-                m.name(),
-                kernel.name(),
-                Method::Default.name()
-            )));
-        }
-        if typed.has("precision") && precision != own {
-            return Err(Error::usage(format!(
-                "--precision {precision}: --kernel {} computes in {own} (--precision chooses the \
-                 simd kernel's lanes)",
-                kernel.name()
-            )));
-        }
-        return Ok(Method::Default);
-    }
-    match m {
-        Method::Default if precision == "f64" => Ok(Method::F64x4),
-        Method::Default if precision == "auto" => Ok(Method::Auto),
-        Method::Default => Ok(m),
-        // a method computes in its own precision; a typed --precision must agree with it
-        _ if typed.has("precision") && precision != m.precision() => {
-            let hint = if precision == "f64" {
-                "; f64 packets exist for the default method only (--method f64x4)"
-            } else {
-                ""
-            };
-            Err(Error::usage(format!(
-                "--precision {precision}: contradicts --method {}, which computes in {}{hint}",
-                m.name(),
-                m.precision()
-            )))
-        }
-        _ => Ok(m),
+/// The precision `--precision` names for `kernel`, refusing one that contradicts a scalar
+/// kernel's own. The message names only flags the user typed: a value left at its default
+/// cannot contradict a typed one.
+fn precision(v: &View, typed: &Typed, kernel: KernelArg) -> Result<crate::Precision> {
+    let precision = crate::Precision::parse(&v.precision).expect("clap checked the name");
+    match kernel.precision() {
+        // a scalar kernel (typed: the default is simd) computes in its own precision
+        Some(own) if typed.has("precision") && precision != own => Err(Error::usage(format!(
+            "--precision {}: --kernel {} computes in {} (--precision chooses the simd \
+                 kernel's lanes)",
+            precision.name(),
+            kernel.name(),
+            own.name()
+        ))),
+        Some(own) => Ok(own),
+        None => Ok(precision),
     }
 }
 
 /// Refuses the render command's flags that cannot apply to the rest of its settings.
-/// `method_flag` names the typed flag that chose the method ([`method_flag`]).
-fn check_render(s: &RenderSettings, typed: &Typed, method_flag: &str) -> Result<()> {
-    let method = s.view.method;
-    if let Some(n) = s.view.threads
-        && n > 1
-        && method.is_brute_force()
-    {
-        return Err(Error::usage(format!(
-            "--threads {n}: {method_flag} renders on 1 thread, not on {} (it runs the \
-             brute-force driver of the accuracy lab); use --threads 1, or the default method",
-            count(n, "thread")
-        )));
-    }
+fn check_render(s: &RenderSettings, typed: &Typed) -> Result<()> {
     if typed.has("seed") && s.color_mode != ColorMode::Random {
         let how = match s.color_mode {
             ColorMode::Ordered => "colours by the palette",

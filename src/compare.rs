@@ -14,11 +14,9 @@ use crate::camera::Camera;
 use crate::kernel::edge_eps;
 use crate::kernel::polygon::{PolyK, QuadK, TriangleK, polygon_x1_within};
 use crate::kernel::sphere::{SphereK, sphere_x1};
+use crate::precision::Precision;
 use crate::real::V3;
-use crate::render::Method;
-use crate::render::{
-    Frame, PacketScene, f32_depth, prepare_f64, render_packet, render_scalar_counting,
-};
+use crate::render::{Frame, PacketScene, prepare_f64, render_packet, render_scalar_counting};
 use crate::scene::{Scene, Shape};
 use crate::shade::{ColorMode, Variation, shade};
 use glam::DVec3;
@@ -54,7 +52,7 @@ pub struct Report {
     /// Per pixel: 0 agree, [`TIE`], [`EDGE`] or [`UNEXCUSED`].
     pub class: Vec<u8>,
     /// Pixels `--precision auto` decided again in f64 (row-major, ascending; empty for the
-    /// other methods).
+    /// other precisions).
     pub redecided: Vec<usize>,
 }
 
@@ -128,11 +126,11 @@ pub fn compare_with(scene: &Scene, camera: &Camera, accel: Accel) -> (Report, Fr
     if accel == Accel::World {
         let options = crate::Options {
             accel,
-            method: Method::Default,
+            precision: Precision::F32,
             ..crate::Options::default()
         };
         let frame = crate::Renderer::new(scene, camera, &options)
-            .expect("the default method takes every acceleration")
+            .expect("the packet kernel takes every acceleration")
             .render();
         return compare_frame(scene, camera, &frame);
     }
@@ -146,16 +144,28 @@ pub fn compare_with(scene: &Scene, camera: &Camera, accel: Accel) -> (Report, Fr
     compare_frame(scene, camera, &packet)
 }
 
-/// [`compare`] of the render of an intersection method (`--method`); the
-/// default method goes through the renderer proper, with automatic acceleration.
-pub fn compare_method(scene: &Scene, camera: &Camera, method: Method) -> (Report, Frame<f64>) {
-    match method {
-        Method::Default => compare_with(scene, camera, Accel::Auto),
-        Method::Auto => compare_auto(scene, camera, Accel::Auto),
-        // f64x4 takes the acceleration; the lab's brute-force methods ignore it
-        m => {
-            let frame = m.prepare_with(scene, camera, Accel::Auto).render();
-            compare_frame(scene, camera, &f32_depth(frame))
+/// [`compare`] of the packets in `precision` (`lanecast compare --precision`) with
+/// acceleration `accel`: f32 ([`compare_with`]), `auto` ([`compare_auto`]) or f64 (f64x4
+/// lanes, or the world engine in f64 with `--accel world`).
+pub fn compare_precision(
+    scene: &Scene,
+    camera: &Camera,
+    precision: Precision,
+    accel: Accel,
+) -> (Report, Frame<f64>) {
+    match precision {
+        Precision::F32 => compare_with(scene, camera, accel),
+        Precision::Auto => compare_auto(scene, camera, accel),
+        Precision::F64 => {
+            let options = crate::Options {
+                accel,
+                precision,
+                ..crate::Options::default()
+            };
+            let frame = crate::Renderer::new(scene, camera, &options)
+                .expect("the packet kernel takes every acceleration")
+                .render();
+            compare_frame(scene, camera, &frame)
         }
     }
 }
@@ -170,14 +180,21 @@ pub fn compare_auto(scene: &Scene, camera: &Camera, accel: Accel) -> (Report, Fr
     (report, oracle)
 }
 
+/// The f64 scalar oracle's frame of `scene` seen by `camera` (`--kernel scalar`, depths kept
+/// in f64), in the current rayon pool. It traces through the tiles when `auto` would use them:
+/// bit-identical to testing every primitive (tests/accel.rs), and seconds instead of minutes
+/// on large meshes.
+pub fn oracle(scene: &Scene, camera: &Camera) -> Frame<f64> {
+    let (w, h) = (camera.width as usize, camera.height as usize);
+    let (prepared, structure) = prepare_f64(Accel::Auto, scene, camera);
+    render_scalar_counting(&prepared, &camera.tables(1, 1), &structure, w, h, None)
+}
+
 /// Compares a render of `scene` (ids, depths) with the f64 oracle's.
 pub fn compare_frame(scene: &Scene, camera: &Camera, packet: &Frame<f32>) -> (Report, Frame<f64>) {
     let (w, h) = (camera.width as usize, camera.height as usize);
     let t64 = camera.tables::<f64>(1, 1);
-    // The oracle traces through the tiles when `auto` would use them: bit-identical to testing
-    // every primitive (tests/accel.rs), and seconds instead of minutes on large meshes.
-    let (prepared, structure) = prepare_f64(Accel::Auto, scene, camera);
-    let oracle = render_scalar_counting(&prepared, &t64, &structure, w, h, None);
+    let oracle = oracle(scene, camera);
     let mut r = Report {
         pixels: w * h,
         class: vec![0; w * h],

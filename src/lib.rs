@@ -45,8 +45,8 @@
 //!   arrays ([`scene::scene_from_arrays`]).
 //! - The camera: [`Camera::for_scene`] for an image size, with [`DEFAULT_FOV`] when neither the
 //!   caller nor the scene gives a field of view.
-//! - Rendering: [`Renderer::new`] with [`Options`] ([`Kernel`], [`Accel`], [`Method`]) prepares
-//!   a scene for a camera; [`Renderer::render`] gives a [`Frame`].
+//! - Rendering: [`Renderer::new`] with [`Options`] ([`Precision`], [`Accel`], [`Kernel`])
+//!   prepares a scene for a camera; [`Renderer::render`] gives a [`Frame`].
 //! - Many views of one scene: [`Views::new`] once, then [`Views::render`] for each camera
 //!   ([`Camera::look_at`] makes one from a [`CameraSpec`]); [`scene::views`] reads views files
 //!   and makes orbits. Each view is bit-identical to a [`Renderer`] of its own.
@@ -60,10 +60,10 @@
 //! - [`limits`]: every resource limit enforced; [`compare`]: the packet kernel against the
 //!   f64 oracle, pixel by pixel (`lanecast compare`).
 //!
-//! Image sizes are `u32` throughout. The engine's inner layers (kernels, primitive stores,
-//! acceleration structures, the other intersection methods) are opened under
-//! [`experimental`], for the accuracy lab, the benches and the tests, with no stability
-//! promise.
+//! Image sizes are `u32` throughout. The parts of the engine's inner layers (kernels,
+//! primitive stores, ray tables, one kernel's setup) that the accuracy lab, the benches and
+//! the tests use are named under [`experimental`], with no stability promise. The other intersection methods
+//! (Möller–Trumbore, watertight, ...) are the lab's (`lab/`), not the engine's.
 //!
 //! # Features
 //!
@@ -87,12 +87,12 @@
 //! # Inside
 //!
 //! Modules, lowest layer first (lower layers never import higher ones): `scene` (parse,
-//! validate, meshes) -> `camera`, `soa` -> `kernel` (default kernels and the other
-//! intersection methods) -> `accel` -> `render` (and `frame`) -> `shade`, `output` -> `compare`
-//! -> the command line (`cli`, `run`, `progress`, `stats`: feature `cli`). `error`, `limits`,
-//! `real` and `par` (rayon, or its sequential stand-in) are shared by all. Only [`scene`],
-//! [`output`], [`limits`] and [`compare`] are public as modules; the others are opened as
-//! they are under [`experimental`].
+//! validate, meshes) -> `camera`, `soa` -> `kernel` -> `accel` -> `render` (and `frame`) ->
+//! `shade`, `output` -> `compare` -> the command line (`cli`, `run`, `progress`, `stats`:
+//! feature `cli`). `error`, `limits`, `precision`, `real` and `par` (rayon, or its
+//! sequential stand-in) are shared by all. Only [`scene`], [`output`], [`limits`],
+//! [`compare`] and [`world`] are public as modules; [`experimental`] names a few items of the
+//! others.
 
 #![warn(missing_docs)]
 
@@ -109,6 +109,7 @@ pub(crate) mod kernel;
 pub mod limits;
 pub mod output;
 pub(crate) mod par;
+pub(crate) mod precision;
 #[cfg(feature = "cli")]
 pub(crate) mod progress;
 pub(crate) mod real;
@@ -130,7 +131,8 @@ pub use accel::Accel;
 pub use camera::{Camera, DEFAULT_FOV, intrinsics_of_matrix, spec_from_matrices};
 pub use error::{Error, Result};
 pub use frame::Frame;
-pub use render::{Kernel, Method, Options, Rendered, Renderer, Views};
+pub use precision::Precision;
+pub use render::{Kernel, Options, Rendered, Renderer, Views};
 pub use scene::{CameraSpec, Intrinsics, Lens, Scene, load_scene, parse_scene};
 pub use shade::{ColorMode, Variation, shade};
 

@@ -21,9 +21,6 @@ pub struct Stats {
     pub kernel: &'static str,
     /// The precision that ran, as `--precision` names it: `auto`, `f32` or `f64`.
     pub precision: &'static str,
-    /// The method that ran, as `--method` names it (`eplane+stable` for the default method in
-    /// any precision but f64, whose packets are the `f64x4` method).
-    pub method: &'static str,
     pub accel: &'static str,
     pub threads: usize,
     /// Seed of the `random` colours.
@@ -178,12 +175,12 @@ impl Stats {
     }
 
     /// The precision and SIMD width that ran: rays one at a time for the scalar kernels, f64x4
-    /// lanes for the f64x4 method, else the packet kernel's f32x8 as this build compiles it.
+    /// lanes for the packets in f64, else the packet kernel's f32x8 as this build compiles it.
     pub fn lanes(&self) -> String {
-        match (self.kernel, self.method) {
+        match (self.kernel, self.precision) {
             ("scalar", _) => "f64, one ray at a time".into(),
             ("scalar-f32", _) => "f32, one ray at a time".into(),
-            (_, "f64x4") => "f64 in f64x4 lanes, two per 8-ray packet".into(),
+            (_, "f64") => "f64 in f64x4 lanes, two per 8-ray packet".into(),
             _ if self.redecided.is_some() => format!(
                 "f32 in {}, hits f32 cannot hold re-decided in f64 one ray at a time",
                 simd_in_use()
@@ -208,10 +205,9 @@ impl Stats {
         );
         let _ = writeln!(
             out,
-            "  kernel {}, precision {}, method {}, accel {}, {}, {}",
+            "  kernel {}, precision {}, accel {}, {}, {}",
             self.kernel,
             self.precision,
-            self.method,
             self.accel,
             count(self.threads, "thread", "threads"),
             self.lanes()
@@ -299,7 +295,6 @@ impl Stats {
             "primitives": {"spheres": spheres, "triangles": triangles, "quads": quads},
             "kernel": self.kernel,
             "precision": self.precision,
-            "method": self.method,
             "accel": self.accel,
             "threads": self.threads,
             "seed": self.seed,
@@ -378,7 +373,6 @@ mod tests {
             primitives: (1, 2, 3),
             kernel: "simd",
             precision: "f32",
-            method: "eplane+stable",
             accel: "bvh",
             threads: 2,
             phases: vec![("parse", 0.001), ("render", 0.002)],
@@ -398,8 +392,7 @@ mod tests {
             s.text()
         );
         assert!(
-            s.text()
-                .contains("kernel simd, precision f32, method eplane+stable, accel bvh,"),
+            s.text().contains("kernel simd, precision f32, accel bvh,"),
             "{}",
             s.text()
         );
@@ -414,22 +407,15 @@ mod tests {
         s.kernel = "scalar-f32";
         assert_eq!(s.lanes(), "f32, one ray at a time");
         s.kernel = "simd";
-        s.method = "f64x4";
         assert!(s.lanes().starts_with("f64 in f64x4 lanes"));
         let j: serde_json::Value = serde_json::from_str(&s.json()).unwrap();
-        assert_eq!(
-            (j["precision"].as_str(), j["method"].as_str()),
-            (Some("f64"), Some("f64x4"))
-        );
+        assert_eq!(j["precision"].as_str(), Some("f64"));
+        assert!(j.get("method").is_none(), "no method: the lab's");
         // auto: the precision, the re-decisions, in words and as a fraction of the image
-        s.method = "eplane+stable";
         s.precision = "auto";
         s.redecided = Some(1);
         let text = s.text();
-        assert!(
-            text.contains("precision auto, method eplane+stable,"),
-            "{text}"
-        );
+        assert!(text.contains("precision auto, accel bvh,"), "{text}");
         assert!(
             text.contains("re-decided in f64: 1 pixel (1.0000% of the image)"),
             "{text}"
@@ -460,7 +446,6 @@ mod tests {
             "primitives",
             "kernel",
             "precision",
-            "method",
             "accel",
             "threads",
             "simd",

@@ -1,4 +1,4 @@
-//! Accelerations agree: every kernel and precision (the packet kernel, the f64x4 method, the
+//! Accelerations agree: every kernel and precision (the packet kernel, f64x4 packets, the
 //! scalar f64 oracle and scalar-f32) with `--accel bvh` and with `--accel tiles` returns
 //! exactly the ids and depths of `--accel none` (the nearest-hit rule is order-independent, the
 //! BVH's padded boxes never cull a primitive a ray hits, and the tiles' rectangles and near
@@ -11,9 +11,8 @@ mod common;
 use common::*;
 use glam::DVec3;
 use lanecast::Accel;
-use lanecast::experimental::render::{
-    Frame, Kernel, Method, PacketScene, Setup, f32_depth, render_packet,
-};
+use lanecast::experimental::render::wide64::Kit64;
+use lanecast::experimental::render::{Frame, PacketScene, Plain, Setup, f32_depth, render_packet};
 use lanecast::scene::{Scene, Shape};
 
 fn same_bits(what: &str, w: u32, a: &Frame<f32>, b: &Frame<f32>) {
@@ -33,7 +32,7 @@ fn frames_equal(name: &str, scene: &Scene, w: u32, h: u32) {
     // The scalar kernels (the f64 oracle and scalar-f32) through each structure, against
     // themselves testing every primitive.
     let (wu, hu) = (w as usize, h as usize);
-    for kernel in [Kernel::ScalarF64, Kernel::ScalarF32] {
+    for kernel in [Plain::ScalarF64, Plain::ScalarF32] {
         let none = Setup::with_accel(kernel, Accel::None, scene, &camera);
         assert_eq!(none.accel(), Accel::None);
         let a = none.render(wu, hu);
@@ -44,11 +43,11 @@ fn frames_equal(name: &str, scene: &Scene, w: u32, h: u32) {
             same_bits(&format!("{name}, {kernel:?} {}", accel.name()), w, &a, &b);
         }
     }
-    // The f64x4 method through each structure, f64 depths bit for bit; without acceleration
-    // it is the oracle.
-    let f64x4 = |accel: Accel| Method::F64x4.prepare_with(scene, &camera, accel);
+    // f64x4 packets (`--precision f64`) through each structure, f64 depths bit for bit;
+    // without acceleration they are the oracle.
+    let f64x4 = |accel: Accel| Kit64::with_accel(scene, &camera, accel);
     let a = f64x4(Accel::None).render();
-    let oracle = Setup::with_accel(Kernel::ScalarF64, Accel::None, scene, &camera);
+    let oracle = Setup::with_accel(Plain::ScalarF64, Accel::None, scene, &camera);
     same_bits(
         &format!("{name}, f64x4 = oracle"),
         w,

@@ -12,7 +12,7 @@ use glam::DVec3;
 use lanecast::Accel;
 use lanecast::Camera;
 use lanecast::scene::{CameraSpec, Scene, Shape, Shapes};
-use lanecast::{Kernel, Method, Options, Renderer};
+use lanecast::{Kernel, Options, Precision, Renderer};
 use std::path::Path;
 
 /// What renders a case: each is checked through every acceleration against `none`.
@@ -35,17 +35,17 @@ const ALL: [Kind; 5] = [
 
 impl Kind {
     fn options(self, accel: Accel) -> Options {
-        let (kernel, method) = match self {
-            Kind::F32 => (Kernel::Packet, Method::Default),
-            Kind::Auto => (Kernel::Packet, Method::Auto),
-            Kind::F64 => (Kernel::Packet, Method::F64x4),
-            Kind::ScalarF32 => (Kernel::ScalarF32, Method::Default),
-            Kind::ScalarF64 => (Kernel::ScalarF64, Method::Default),
+        let (kernel, precision) = match self {
+            Kind::F32 => (Kernel::Packet, Precision::F32),
+            Kind::Auto => (Kernel::Packet, Precision::Auto),
+            Kind::F64 => (Kernel::Packet, Precision::F64),
+            Kind::ScalarF32 => (Kernel::Scalar, Precision::F32),
+            Kind::ScalarF64 => (Kernel::Scalar, Precision::F64),
         };
         Options {
-            kernel,
+            precision,
             accel,
-            method,
+            kernel,
         }
     }
 }

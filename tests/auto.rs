@@ -14,9 +14,9 @@ use common::*;
 use glam::{DMat3, DVec3};
 use lanecast::Accel;
 use lanecast::compare::{UNEXCUSED, classify_within};
-use lanecast::experimental::render::kits::Oracle;
-use lanecast::experimental::render::{Frame, Kernel, Method, Options, Renderer};
+use lanecast::experimental::render::{Frame, Options, Renderer};
 use lanecast::scene::{Scene, Shape};
+use lanecast::{Kernel, Precision};
 use std::path::Path;
 
 const DEPTH_REL: f64 = 1e-5;
@@ -51,12 +51,18 @@ fn judge(scene: &Scene, w: u32, h: u32, oracle: &Frame<f64>, got: &Frame<f32>) -
     f
 }
 
-fn render(scene: &Scene, w: u32, h: u32, method: Method, accel: Accel) -> (Frame<f32>, usize) {
+fn render(
+    scene: &Scene,
+    w: u32,
+    h: u32,
+    precision: Precision,
+    accel: Accel,
+) -> (Frame<f32>, usize) {
     let camera = camera_of(scene, w, h);
     let options = Options {
-        kernel: Kernel::Packet,
+        precision,
         accel,
-        method,
+        kernel: Kernel::Packet,
     };
     let r = Renderer::new(scene, &camera, &options).unwrap();
     let (frame, redone) = r.render_marking(None);
@@ -66,13 +72,13 @@ fn render(scene: &Scene, w: u32, h: u32, method: Method, accel: Accel) -> (Frame
 /// Asserts the guarantee for `--precision auto` with every acceleration; returns the f32
 /// failures, for the scenes that must show them.
 fn holds(name: &str, scene: &Scene, w: u32, h: u32) -> Failures {
-    let oracle = Oracle::new(scene, &camera_of(scene, w, h)).render();
+    let oracle = lanecast::compare::oracle(scene, &camera_of(scene, w, h));
     assert!(
         oracle.ids.iter().any(|&i| i >= 0),
         "{name}: the scene must hit something"
     );
     for accel in [Accel::None, Accel::Tiles, Accel::Bvh] {
-        let (frame, redone) = render(scene, w, h, Method::Auto, accel);
+        let (frame, redone) = render(scene, w, h, Precision::Auto, accel);
         let f = judge(scene, w, h, &oracle, &frame);
         assert!(
             f.unexcused.is_empty() && f.depth_rel_max <= DEPTH_REL,
@@ -83,7 +89,7 @@ fn holds(name: &str, scene: &Scene, w: u32, h: u32) -> Failures {
             f.depth_rel_max
         );
     }
-    let (f32_frame, _) = render(scene, w, h, Method::Default, Accel::Auto);
+    let (f32_frame, _) = render(scene, w, h, Precision::F32, Accel::Auto);
     judge(scene, w, h, &oracle, &f32_frame)
 }
 
@@ -255,15 +261,15 @@ fn auto_work_counts_the_last_frames_packets_and_measurements() {
     let scene = lanecast::load_scene(&path).unwrap();
     let (w, h) = (203, 101);
     let camera = camera_of(&scene, w, h);
-    let renderer = |method, accel| {
+    let renderer = |precision, accel| {
         let options = Options {
-            kernel: Kernel::Packet,
+            precision,
             accel,
-            method,
+            kernel: Kernel::Packet,
         };
         Renderer::new(&scene, &camera, &options).unwrap()
     };
-    let tiles = renderer(Method::Auto, Accel::Tiles);
+    let tiles = renderer(Precision::Auto, Accel::Tiles);
     for _ in 0..2 {
         let (_, redone) = tiles.render_marking(None);
         let work = tiles.auto_work().expect("auto counts its work");
@@ -275,8 +281,8 @@ fn auto_work_counts_the_last_frames_packets_and_measurements() {
             "{work:?}"
         );
     }
-    let bvh = renderer(Method::Auto, Accel::Bvh);
+    let bvh = renderer(Precision::Auto, Accel::Bvh);
     bvh.render_marking(None);
     assert_eq!(bvh.auto_work(), Some(Default::default()));
-    assert_eq!(renderer(Method::Default, Accel::Tiles).auto_work(), None);
+    assert_eq!(renderer(Precision::F32, Accel::Tiles).auto_work(), None);
 }

@@ -14,7 +14,7 @@ use common::{Rng, bounds, icosphere};
 use glam::DVec3;
 use lanecast::scene::views::orbit;
 use lanecast::scene::{CameraSpec, Scene, Shape, Shapes};
-use lanecast::{Camera, Method, Options, Renderer, Views, load_scene};
+use lanecast::{Camera, Options, Precision, Renderer, Views, load_scene};
 use std::path::Path;
 
 /// Three subdivided spheres of triangles (runs of 64 neighbouring faces), one behind the
@@ -98,9 +98,9 @@ fn views_that_leave_clusters_out_render_every_primitive_bit_for_bit() {
     let (mut views_done, mut culled, mut second, mut third) = (0, 0, 0, 0);
     for scene in &scenes {
         for path in paths(scene, &mut rng) {
-            for method in [Method::Auto, Method::Default] {
+            for precision in [Precision::Auto, Precision::F32] {
                 let options = Options {
-                    method,
+                    precision,
                     ..Options::default()
                 };
                 let views = Views::new(scene, &options).unwrap();
@@ -111,7 +111,7 @@ fn views_that_leave_clusters_out_render_every_primitive_bit_for_bit() {
                     if views.check(&camera).is_err() {
                         continue;
                     }
-                    let what = format!("{} {method:?} view {k}", scene.source.display());
+                    let what = format!("{} {precision:?} view {k}", scene.source.display());
                     let got = views.render_marking(&camera).unwrap();
                     let alone = Renderer::new(scene, &camera, &options).unwrap();
                     let (want, redone) = alone.render_marking(None);
@@ -196,7 +196,7 @@ fn a_third_render_gives_the_pixels_neither_frame_holds() {
     text += "sphere 0 -10000 0 10000\n";
     let scene = lanecast::parse_scene(&text, Path::new("third.sc")).unwrap();
     let options = Options {
-        method: Method::Auto,
+        precision: Precision::Auto,
         ..Options::default()
     };
     let views = Views::new(&scene, &options).unwrap();

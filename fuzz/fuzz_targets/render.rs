@@ -6,7 +6,7 @@
 
 use lanecast::Camera;
 use lanecast::compare::compare;
-use lanecast::experimental::render::{Kernel, Setup};
+use lanecast::experimental::render::{Plain, Setup};
 use lanecast::experimental::scene::range;
 use lanecast::scene::parse_scene;
 use libfuzzer_sys::fuzz_target;
@@ -28,7 +28,7 @@ fuzz_target!(|data: &[u8]| {
     let fov = scene.camera.fov_deg().unwrap_or(60.0);
     let camera = Camera::new(&scene.camera, fov, SIZE, SIZE);
     let n = (SIZE * SIZE) as usize;
-    for kernel in [Kernel::Packet, Kernel::ScalarF64] {
+    for kernel in [Plain::Packet, Plain::ScalarF64] {
         let frame = Setup::new(kernel, &scene, &camera).render(SIZE as usize, SIZE as usize);
         assert_eq!(frame.ids.len(), n);
         for (i, (&id, &t)) in frame.ids.iter().zip(&frame.depth).enumerate() {

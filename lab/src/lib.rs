@@ -1,12 +1,19 @@
-//! The accuracy lab: every intersection method (`lanecast::experimental::kernel::methods`, plus the
-//! defaults) on the stress scenes (`scenes/stress/`) and the seed scenes, measured against the
+//! The accuracy lab: every intersection method ([`methods`], plus lanecast's own kernels and
+//! precisions) on the stress scenes (`scenes/stress/`) and the seed scenes, measured against the
 //! f64 scalar oracle, with throughput on one thread; writes a chart, a table and error images
 //! to `docs/lab/`. Run it with `cargo bench -p lanecast-lab --bench lab` (see [`lab_main`]).
 //!
 //! The lab is its own crate on top of lanecast: it uses the library's public API (scenes,
-//! cameras, the methods' brute-force drivers, `compare`'s mismatch classes) and nothing in
-//! lanecast imports it, so the `lanecast` binary never links the chart's plotting crate.
+//! cameras, `compare`'s mismatch classes) and its inner layers (`lanecast::experimental`:
+//! kernels, ray tables, constant records), and nothing in lanecast imports it, so the
+//! `lanecast` binary never links the chart's plotting crate nor the lab's methods.
 //!
+//! - `methods/`: the other intersection methods (Möller–Trumbore, watertight, plane, the
+//!   textbook sphere, f32 world-space setup), 1-lane and 8-lane forms side by side;
+//! - `kits.rs`: their brute-force drivers, and the f64 scalar oracle;
+//! - `method.rs`: [`Method`], one point on the chart, and its driver;
+//! - `render.rs`: `lab-render` (`src/bin/lab-render.rs`), one scene with any method against
+//!   the oracle, reported as `lanecast compare` reports lanecast's precisions;
 //! - `measure.rs`: mismatches (ties, edge band, unexcused), holes, false hits, depth error,
 //!   throughput;
 //! - `report.rs`: the Markdown table, the chart (plotters), the error images;
@@ -15,12 +22,17 @@
 //!   docs/architecture.md, "Many views: object order against a world-space BVH").
 
 pub mod bvh_spike;
+pub mod kits;
 pub mod measure;
+pub mod method;
+pub mod methods;
+pub mod render;
 pub mod report;
 
 use lanecast::Camera;
 use lanecast::scene::{Scene, load_scene};
-use lanecast::{Error, Method, Result};
+use lanecast::{Error, Result};
+pub use method::Method;
 use std::path::{Path, PathBuf};
 
 /// Per-pixel results of a lab render: the renderer's frame, depth kept in f64.

@@ -22,11 +22,11 @@
 
 use super::LabFrame;
 use super::LabScene;
+use crate::kits::Oracle;
+use crate::method::{Method, MethodRender};
 use glam::DVec3;
 use lanecast::compare::{EDGE_BAND, TIE_REL, hit_with_slack};
 use lanecast::experimental::real::V3;
-use lanecast::experimental::render::kits::Oracle;
-use lanecast::experimental::render::method::{Method, MethodRender};
 use lanecast::scene::Shape;
 use std::time::Instant;
 

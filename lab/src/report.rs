@@ -4,7 +4,7 @@
 
 use super::LabScene;
 use super::measure::{FALSE_HIT, HOLE, Row, SceneResult};
-use lanecast::Method;
+use crate::Method;
 use lanecast::compare::{class_colour, marked_render};
 use lanecast::output;
 use lanecast::{Error, Result};

@@ -6,23 +6,23 @@
 
 use glam::DVec3;
 use lanecast::Camera;
-use lanecast::Method;
-use lanecast::experimental::kernel::methods::mt::{MtK, mt_x1, mt_x8};
-use lanecast::experimental::kernel::methods::plane::{PlaneK, plane_x1, plane_x8};
-use lanecast::experimental::kernel::methods::sphere_naive::{NaiveK, naive_x1, naive_x8};
-use lanecast::experimental::kernel::methods::wide64::{Hit4d, polygon_x4d, sphere_x4d};
-use lanecast::experimental::kernel::methods::woop::{WoopK, WoopRay8, woop_ray, woop_x1, woop_x8};
-use lanecast::experimental::kernel::methods::world;
 use lanecast::experimental::kernel::polygon::{QuadK, TriangleK, polygon_x1, polygon_x8};
 use lanecast::experimental::kernel::sphere::{SphereK, sphere_x1, sphere_x8};
+use lanecast::experimental::kernel::wide64::{Hit4d, polygon_x4d, sphere_x4d};
 use lanecast::experimental::kernel::{Hit, Hit8};
 use lanecast::experimental::real::V3;
-use lanecast::experimental::render::kits::{
-    EPlane, EPlaneWorld, Kit, Mt, Naive, Oracle, Plane, PolyFamily, Stable, StableWorld, Watertight,
-};
 use lanecast::experimental::render::wide64::Kit64;
-use lanecast_lab::LabScene;
+use lanecast_lab::kits::{
+    EPlane, EPlaneWorld, Kit, Mt, Naive, Oracle, Plane, PolyFamily, SphereFamily, Stable,
+    StableWorld, Watertight,
+};
 use lanecast_lab::measure::{Row, accuracy, method_frame, oracle_frame};
+use lanecast_lab::methods::mt::{MtK, mt_x1, mt_x8};
+use lanecast_lab::methods::plane::{PlaneK, plane_x1, plane_x8};
+use lanecast_lab::methods::sphere_naive::{NaiveK, naive_x1, naive_x8};
+use lanecast_lab::methods::woop::{WoopK, WoopRay8, woop_ray, woop_x1, woop_x8};
+use lanecast_lab::methods::world;
+use lanecast_lab::{LabScene, Method};
 use proptest::prelude::*;
 use std::path::Path;
 use wide::{f32x8, f64x4};
@@ -255,9 +255,7 @@ fn packet_renders_equal_scalar_renders_with_border_lanes() {
         let mut s = stress(n);
         let fov = s.scene.camera.fov_deg().unwrap_or(60.0);
         s.camera = Camera::new(&s.scene.camera, fov, 37, 11);
-        fn same<S: lanecast::experimental::render::kits::SphereFamily, P: PolyFamily>(
-            s: &LabScene,
-        ) {
+        fn same<S: SphereFamily, P: PolyFamily>(s: &LabScene) {
             let k = Kit::<S, P>::new(&s.scene, &s.camera);
             let (a, b) = (k.render_x8(), k.render_x1());
             assert_eq!(a.ids, b.ids);

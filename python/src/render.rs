@@ -8,7 +8,7 @@ use crate::threads::run;
 use lanecast::Frame;
 use lanecast::scene::RangeClusters;
 use lanecast::world::{self, World};
-use lanecast::{ColorMode, Variation};
+use lanecast::{ColorMode, Precision, Variation};
 use numpy::ndarray::{ArrayD, IxDyn};
 use numpy::{IntoPyArray, PyReadonlyArray1};
 use pyo3::exceptions::PyValueError;
@@ -148,7 +148,7 @@ pub(crate) enum Engine {
         scene: Arc<lanecast::Scene>,
         world: Arc<World>,
         range: Arc<RangeClusters>,
-        precision: world::Precision,
+        precision: Precision,
     },
 }
 

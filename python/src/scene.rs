@@ -9,25 +9,19 @@ use crate::pickle::{self, SceneState};
 use crate::render::{self, Engine, Extras, Render};
 use crate::threads::run;
 use lanecast::scene::RangeClusters;
-use lanecast::world::{self, World};
-use lanecast::{CameraSpec, Method, Options, Scene, Views};
+use lanecast::world::World;
+use lanecast::{CameraSpec, Options, Precision, Scene, Views};
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex, OnceLock};
 
-/// The precisions of `--precision`, as indices into a scene's prepared views.
-const PRECISIONS: [(&str, Method); 3] = [
-    ("auto", Method::Auto),
-    ("f32", Method::Default),
-    ("f64", Method::F64x4),
-];
-
+/// The index of `--precision`'s `name` in `Precision::ALL`: a slot of a scene's prepared views.
 fn precision_index(name: &str) -> PyResult<usize> {
-    PRECISIONS
+    Precision::ALL
         .iter()
-        .position(|(n, _)| *n == name)
+        .position(|p| p.name() == name)
         .ok_or_else(|| {
             value_error(format!(
                 "precision={name:?}: must be \"auto\", \"f32\" or \"f64\""
@@ -43,13 +37,6 @@ self_cell::self_cell!(
         dependent: Views,
     }
 );
-
-/// The world engine's precision for `--precision`'s name (the same index as `PRECISIONS`).
-const WORLD_PRECISIONS: [world::Precision; 3] = [
-    world::Precision::Auto,
-    world::Precision::F32,
-    world::Precision::F64,
-];
 
 /// A loaded, validated scene, and what is prepared from it once: its per-eye views (one per
 /// precision) and, for `accel="world"`, the world engine's prepared scene with the range
@@ -101,7 +88,7 @@ impl PyScene {
                     scene: self.scene.clone(),
                     world,
                     range,
-                    precision: WORLD_PRECISIONS[p],
+                    precision: Precision::ALL[p],
                 })
             }
             _ => Err(value_error(format!(
@@ -116,7 +103,7 @@ impl PyScene {
             return Ok(p.clone());
         }
         let options = Options {
-            method: PRECISIONS[precision].1,
+            precision: Precision::ALL[precision],
             ..Options::default()
         };
         let p = Prepared::try_new(self.scene.clone(), |s| Views::new(s, &options))

@@ -19,7 +19,7 @@
 use super::build::{self, Built};
 use crate::camera::Camera;
 use crate::kernel::lanes::Lanes;
-use crate::kernel::methods::wide64::Hit4d;
+use crate::kernel::wide64::Hit4d;
 use crate::kernel::{Hit, Hit8, HitLanes};
 use crate::real::{Real, V3, f32_down, f32_up};
 use crate::scene::Scene;
@@ -188,7 +188,7 @@ fn walk_lanes<L: Lanes>(
 }
 
 /// Nearest hits of four f64 rays `d` among the primitives of `p` (in `bvh`'s leaf order), with
-/// the default kernels in f64x4 lanes (`kernel::methods::wide64`, each lane the oracle's
+/// the default kernels in f64x4 lanes (`kernel::wide64`, each lane the oracle's
 /// `polygon_x1::<f64>` / `sphere_x1::<f64>` bit for bit). The boxes are sized for the f64
 /// kernels' rays and distances too (`build.rs`), and the slab test in f64 errs less than in
 /// f32.

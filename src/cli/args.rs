@@ -70,27 +70,19 @@ pub(super) struct View {
     /// (single-dash form: -fov).
     #[arg(long, value_name = "DEGREES", allow_negative_numbers = true)]
     pub(super) fov: Option<f64>,
-    /// Worker threads [default: all cores]. The lab's brute-force methods (mt, watertight,
-    /// plane, naive, world-f32) run on one thread and take no --threads above 1.
+    /// Worker threads [default: all cores].
     #[arg(long, value_name = "N")]
     pub(super) threads: Option<usize>,
     /// Acceleration: auto (tiles from 2 primitives on), none (test every primitive), tiles
     /// (primitives binned into screen tiles, nearest first), bvh (a bounding volume
     /// hierarchy), world (the scene prepared once for every view, each view rendered in
-    /// object order and held to the f64 oracle). Every kernel and precision takes each; the
-    /// lab's brute-force methods take none or auto.
+    /// object order and held to the f64 oracle). Every kernel and precision takes each but
+    /// world, which takes the simd kernel only.
     #[arg(long, value_enum, default_value = "auto")]
     pub(super) accel: AccelArg,
-    /// Intersection method of the simd kernel: eplane+stable (the default: edge planes through
-    /// the eye, stable spheres), mt, watertight, plane, naive, world-f32, f64x4. f64x4 takes
-    /// --accel and every thread; the others run the accuracy lab's brute-force packet driver
-    /// on one thread.
-    #[arg(long, value_name = "METHOD", default_value = "eplane+stable",
-          value_parser = ["eplane+stable", "mt", "watertight", "plane", "naive", "world-f32", "f64x4"])]
-    pub(super) method: String,
     /// Precision of the simd kernel: auto (f32x8 lanes, and each hit f32 cannot hold to 1e-5
-    /// relative decided again in f64), f32 (f32x8 alone) or f64 (f64x4, two per packet: the
-    /// f64x4 method). With --kernel scalar or scalar-f32, only that kernel's own (f64, f32).
+    /// relative decided again in f64), f32 (f32x8 alone) or f64 (f64x4, two per packet, equal to
+    /// the oracle). With --kernel scalar or scalar-f32, only that kernel's own (f64, f32).
     #[arg(long, value_name = "BITS", default_value = "auto", value_parser = ["auto", "f32", "f64"])]
     pub(super) precision: String,
 }
@@ -166,7 +158,7 @@ pub(super) struct RenderArgs {
     #[arg(long, value_name = "K", default_value_t = 1,
           value_parser = clap::value_parser!(u32).range(1..=10_000))]
     pub(super) repeat: u32,
-    /// Write a JSON record of the run: scene, size, primitives, kernel, method, acceleration,
+    /// Write a JSON record of the run: scene, size, primitives, kernel, precision, acceleration,
     /// threads, SIMD width, phase times, best and median render, rays/s, peak memory.
     #[arg(long, value_name = "FILE.json")]
     pub(super) stats: Option<PathBuf>,
@@ -245,11 +237,19 @@ impl KernelArg {
 
     /// The precision a scalar kernel computes in; `None` for the simd kernel, whose lanes
     /// `--precision` chooses.
-    pub fn precision(self) -> Option<&'static str> {
+    pub fn precision(self) -> Option<crate::Precision> {
         match self {
             KernelArg::Simd => None,
-            KernelArg::Scalar => Some("f64"),
-            KernelArg::ScalarF32 => Some("f32"),
+            KernelArg::Scalar => Some(crate::Precision::F64),
+            KernelArg::ScalarF32 => Some(crate::Precision::F32),
+        }
+    }
+
+    /// The library's kernel: packets, or one ray at a time.
+    pub fn kernel(self) -> crate::Kernel {
+        match self {
+            KernelArg::Simd => crate::Kernel::Packet,
+            KernelArg::Scalar | KernelArg::ScalarF32 => crate::Kernel::Scalar,
         }
     }
 }

@@ -3,7 +3,7 @@
 //! one-dash flag (`-szie`, which clap reports as `-s`), a scene path without `-i`
 //! (`lanecast good.sc`, which clap takes for a subcommand), and a render flag given to
 //! `compare` or compare's flag to the render command (which clap calls unexpected, without
-//! saying why).
+//! saying why), and `--method`, which went to the accuracy lab.
 //!
 //! The arguments are walked as clap walks them, from clap's own `Command` (which flags exist,
 //! which take a value), so that a value is never read as a flag: `--eye -1,2,3`, `-o -`.
@@ -48,6 +48,7 @@ pub(super) fn check(args: &[OsString], top: &Command) -> Result<()> {
                         "{tok}: applies to compare only (lanecast compare -i SCENE {tok} ...)"
                     )));
                 }
+                None if name == "method" => return Err(lab_only(tok)),
                 None => {}
             }
             continue;
@@ -133,6 +134,14 @@ fn one_dash(typed: &str, arg: &Arg) -> Error {
         "{typed}: long flags take two dashes: --{long} (one dash works only for the original's \
          {})",
         originals.join(", ")
+    ))
+}
+
+/// `--method`, which moved to the accuracy lab: where it went.
+fn lab_only(typed: &str) -> Error {
+    Error::usage(format!(
+        "{typed}: intersection methods are the accuracy lab's, not lanecast's: cargo run -p \
+         lanecast-lab --release --bin lab-render -- -i SCENE --method M"
     ))
 }
 

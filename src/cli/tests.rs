@@ -101,53 +101,41 @@ fn refused(s: &str) -> String {
 fn combinations_that_cannot_apply_name_the_typed_flags() {
     for (s, words) in [
         (
-            "-i s.sc --method mt --accel bvh",
-            &["--accel bvh", "--method mt"][..],
-        ),
-        (
-            "-i s.sc --method f64x4 --precision f32",
-            &["--precision f32", "--method f64x4"],
-        ),
-        (
-            "-i s.sc --method naive --precision f64",
-            &["--precision f64", "--method naive"],
-        ),
-        (
             "-i s.sc --kernel scalar --precision f32",
-            &["--precision f32", "--kernel scalar"],
+            &["--precision f32", "--kernel scalar"][..],
         ),
         (
-            "-i s.sc --kernel scalar-f32 --method mt",
-            &["--method mt", "--kernel scalar-f32"],
-        ),
-        (
-            "-i s.sc --method plane --threads 3",
-            &["--threads 3", "--method plane"],
+            "-i s.sc --precision f64 --kernel scalar-f32",
+            &["--precision f64", "--kernel scalar-f32"],
         ),
         ("-i s.sc -cm ordered --seed 2", &["--seed 2", "-cm ordered"]),
-        (
-            "compare -i s.sc --method mt --accel bvh",
-            &["--accel bvh", "--method mt"],
-        ),
     ] {
         let msg = refused(s);
         for w in words {
             assert!(msg.contains(w), "{s}: {msg}");
         }
     }
-    // the default method is never named when --method was not typed
-    assert!(!refused("-i s.sc --kernel scalar --precision f32").contains("--method"));
-    assert!(!refused("-i s.sc --precision f64 --kernel scalar-f32").contains("--method"));
+}
+
+/// `--method` is the lab's (`lab-render`), not the product's: refused, for render and compare
+/// alike, saying where it went.
+#[test]
+fn method_is_not_a_product_flag() {
+    for s in ["-i s.sc --method mt", "compare -i s.sc --method f64x4"] {
+        let msg = refused(s);
+        assert!(msg.starts_with("--method: "), "{s}: {msg}");
+        assert!(msg.contains("lab-render"), "{s}: {msg}");
+    }
 }
 
 #[test]
 fn consistent_combinations_resolve() {
+    use crate::Precision;
     use crate::accel::Accel;
-    use crate::render::Method;
     let r = render("-i s.sc --kernel scalar --precision f64 --accel tiles");
     assert_eq!(
-        (r.kernel, r.view.method),
-        (KernelArg::Scalar, Method::Default)
+        (r.kernel, r.view.precision),
+        (KernelArg::Scalar, Precision::F64)
     );
     assert_eq!(r.view.accel, Accel::Tiles);
     // every kernel and precision takes every acceleration and every thread
@@ -155,16 +143,26 @@ fn consistent_combinations_resolve() {
         "-i s.sc --kernel scalar --accel bvh --threads 2",
         "-i s.sc --kernel scalar-f32 --accel bvh",
         "-i s.sc --precision f64 --accel tiles --threads 2",
-        "-i s.sc --method f64x4 --accel bvh",
+        "-i s.sc --precision f32 --accel bvh",
     ] {
         assert!(parse(args(s)).is_ok(), "{s}");
     }
-    let r = render("-i s.sc --kernel scalar-f32 --precision f32 --method eplane+stable");
-    assert_eq!(r.view.method, Method::Default);
-    assert_eq!(render("-i s.sc --precision f64").view.method, Method::F64x4);
-    assert_eq!(render("-i s.sc --method f64x4").view.method, Method::F64x4);
-    let r = render("-i s.sc --method mt --accel none --threads 1 --precision f32");
-    assert_eq!((r.view.method, r.view.accel), (Method::Mt, Accel::None));
+    // a scalar kernel's precision is its own, typed or not
+    let r = render("-i s.sc --kernel scalar-f32 --precision f32");
+    assert_eq!(r.view.precision, Precision::F32);
+    assert_eq!(
+        render("-i s.sc --kernel scalar").view.precision,
+        Precision::F64
+    );
+    assert_eq!(
+        render("-i s.sc --kernel scalar-f32").view.precision,
+        Precision::F32
+    );
+    assert_eq!(render("-i s.sc").view.precision, Precision::Auto);
+    assert_eq!(
+        render("-i s.sc --precision f64").view.precision,
+        Precision::F64
+    );
     assert_eq!(render("-i s.sc --seed 5 -cm random").seed, 5);
     assert_eq!(render("-i s.sc --threads 4").view.threads, Some(4));
 }

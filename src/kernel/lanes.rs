@@ -1,6 +1,6 @@
 //! One formula, two lane types: the packet kernels (`polygon_lanes`, `sphere_lanes`, [`HitLanes`])
 //! are written once over [`Lanes`], which `wide::f32x8` (the default 8-ray packets) and
-//! `wide::f64x4` (the f64 packets of `kernel::methods::wide64`) implement with their own
+//! `wide::f64x4` (the f64 packets of `kernel::wide64`) implement with their own
 //! instructions. Each generic function is `#[inline(always)]` and monomorphised per lane type,
 //! so the f32x8 code is what it was when written for f32x8 alone (the render bench and
 //! `lanecast -time` give the same figures as the f32x8-only code did; docs/architecture.md, "The kernels").

@@ -1,8 +1,10 @@
 //! Intersection kernels. Each primitive family has its own file (`sphere.rs`; `polygon.rs` for
 //! triangles and quads) holding its formula, its per-primitive constants and its 1-lane
-//! (`*_x1`, generic over f32/f64) and 8-lane (`*_x8`, `wide::f32x8`) forms side by side.
-//! `packet.rs` is the packet's pixel block and its rays. The loops that drive the kernels over a
-//! store's primitives sit above the stores (`soa/trace.rs`).
+//! (`*_x1`, generic over f32/f64) and 8-lane (`*_x8`, `wide::f32x8`) forms side by side, and
+//! its [`Family`] type (`family.rs`): what the engine asks of it. `packet.rs` is the packet's
+//! pixel block and its rays; `wide64.rs` the f64x4 lanes of `--precision f64`. The loops that
+//! drive the kernels over a store's primitives sit above the stores (`soa/trace.rs`). The other
+//! intersection methods the accuracy lab measures live in the lab crate (`lab/src/methods/`).
 //!
 //! Every kernel works in eye-relative coordinates: all primary rays share the eye as origin, so
 //! each primitive's constants are computed once, in f64, relative to the eye, and only then
@@ -14,11 +16,11 @@
 
 pub mod family;
 pub mod lanes;
-pub mod methods;
 pub mod packet;
 pub mod polygon;
 pub mod sphere;
 pub mod triangle_setup;
+pub mod wide64;
 
 pub use family::Family;
 pub use lanes::HitLanes;
@@ -72,13 +74,6 @@ impl<T: Real> Hit<T> {
 #[inline]
 pub fn closer<T: Real>(t: T, id: i32, best_t: T, best_id: i32) -> bool {
     t > T::ZERO && (t < best_t || (t == best_t && id < best_id))
-}
-
-/// Eight rays' directions (unit vectors, origin at the eye).
-#[derive(Debug, Clone, Copy)]
-pub struct Ray8 {
-    /// The x, y and z components, one ray per lane.
-    pub d: [f32x8; 3],
 }
 
 /// The nearest hits of eight rays, ids as f32 (see [`HitLanes`]).

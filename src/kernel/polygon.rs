@@ -289,7 +289,7 @@ pub fn polygon_x8<const N: usize>(k: &PolyK<f32, N>, d: &[f32x8; 3]) -> Option<(
     polygon_lanes(k, d)
 }
 
-/// [`polygon_x1`] in the lanes of `L` (f32x8: [`polygon_x8`]; f64x4: `methods::wide64`), the
+/// [`polygon_x1`] in the lanes of `L` (f32x8: [`polygon_x8`]; f64x4: `kernel::wide64`), the
 /// same operations in the same order as the 1-lane form.
 #[inline(always)]
 pub fn polygon_lanes<L: Lanes, const N: usize>(

@@ -151,7 +151,7 @@ pub fn sphere_disc<L: Lanes>(oc: [L; 3], r2: L, d: &[L; 3]) -> (L, L) {
     (b, r2 - (l[0] * l[0] + l[1] * l[1] + l[2] * l[2]))
 }
 
-/// [`sphere_x1`] in the lanes of `L` (f32x8: [`sphere_x8`]; f64x4: `methods::wide64`), the same
+/// [`sphere_x1`] in the lanes of `L` (f32x8: [`sphere_x8`]; f64x4: `kernel::wide64`), the same
 /// operations in the same order as the 1-lane form.
 #[inline(always)]
 pub fn sphere_lanes<L: Lanes>(s: &SphereK<L::Scalar>, d: &[L; 3]) -> Option<(L, L)> {

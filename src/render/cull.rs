@@ -371,13 +371,14 @@ pub(crate) fn shown(frame: &Frame<f32>, primitives: usize, spare: IdSet) -> IdSe
     set
 }
 
-/// Whether a renderer for `options` takes the tiles with the packet kernel's default method
-/// (f32 or `auto`): the renders whose frames the check of step 3 reasons about.
+/// Whether a renderer for `options` takes the tiles with f32 packets (`f32` or `auto`): the
+/// renders whose frames the check of step 3 reasons about.
 pub(crate) fn applies(options: &Options, scene: &Scene) -> bool {
-    use super::{Kernel, Method};
+    use super::Kernel;
     use crate::accel::Accel;
+    use crate::precision::Precision;
     options.kernel == Kernel::Packet
-        && matches!(options.method, Method::Default | Method::Auto)
+        && matches!(options.precision, Precision::F32 | Precision::Auto)
         && options.accel.resolve(scene.shapes.len()) == Accel::Tiles
 }
 

@@ -3,15 +3,13 @@
 //! Every pixel's result depends only on the pixel, so output is bit-identical at any thread
 //! count; the caller chooses the count by running inside a rayon pool.
 //!
-//! [`Renderer`] is the entry point: [`Options`] (kernel, acceleration, intersection method)
+//! [`Renderer`] is the entry point: [`Options`] (precision, acceleration, kernel)
 //! and a scene seen by a camera make a prepared renderer (the setup phase), whose
 //! [`Renderer::render`] gives a [`Frame`] of ids and depths. The pieces below it
 //! ([`Setup`], [`PacketScene`], [`render_packet_blocks`]) are public for benchmarks and
 //! experiments that time one kernel alone.
 
 mod cull;
-pub mod kits;
-pub mod method;
 pub mod redecide;
 mod renderer;
 mod setup;
@@ -19,9 +17,8 @@ mod views;
 pub mod wide64;
 
 pub use crate::frame::Frame;
-pub use method::Method;
 pub use renderer::{Options, Renderer};
-pub use setup::{Kernel, Setup, Structure, prepare_f64};
+pub use setup::{Kernel, Plain, Setup, Structure, prepare_f64};
 pub use views::{Rendered, Views};
 
 use crate::accel::bvh::{trace_bvh_x1, trace_bvh_x8};
@@ -351,18 +348,8 @@ pub(crate) fn packet_blocks<const BW: usize>(
     (frame, redone)
 }
 
-/// Renders one ray at a time with the scalar kernel in precision `T`.
-pub fn render_scalar<T: Real>(
-    p: &Prepared<T>,
-    tables: &RayTables<T>,
-    width: usize,
-    height: usize,
-) -> Frame<T> {
-    render_scalar_counting(p, tables, &Structure::None, width, height, None)
-}
-
-/// [`render_scalar`] through the acceleration `accel` (bit-identical to without), counting
-/// finished strips in `progress`.
+/// Renders one ray at a time with the scalar kernel in precision `T`, through the acceleration
+/// `accel` (bit-identical to without), counting finished strips in `progress`.
 pub(crate) fn render_scalar_counting<T: Real>(
     p: &Prepared<T>,
     tables: &RayTables<T>,

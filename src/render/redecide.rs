@@ -61,7 +61,7 @@ use crate::accel::bvh::{trace_bvh_x1, trace_bvh_x4d};
 use crate::accel::{Bvh, Tiles};
 use crate::camera::{Camera, RayTables};
 use crate::kernel::Sphere;
-use crate::kernel::methods::wide64::{Hit4d, dir_x4d};
+use crate::kernel::wide64::{Hit4d, dir_x4d};
 use crate::par::prelude::*;
 use crate::scene::{Scene, Shape};
 use crate::soa::trace::ranges_x4d;
@@ -241,11 +241,12 @@ impl Records<f64> for Cached<'_> {
 impl<'s> Redecide<'s> {
     /// The trusted distances of every primitive of `packed` (which `scene` seen by `camera`
     /// was packed into), and the camera's f64 ray tables.
-    pub fn new(scene: &'s Scene, camera: &Camera, packed: &Packed) -> Redecide<'s> {
+    #[cfg(test)]
+    pub(crate) fn new(scene: &'s Scene, camera: &Camera, packed: &Packed) -> Redecide<'s> {
         Redecide::new_in(scene, camera, packed, Spare::default())
     }
 
-    /// [`Redecide::new`], the per-primitive buffers written into `spare`'s.
+    /// `Redecide::new`, the per-primitive buffers written into `spare`'s.
     pub(crate) fn new_in(
         scene: &'s Scene,
         camera: &Camera,
@@ -395,7 +396,7 @@ impl<'s> Redecide<'s> {
     }
 
     /// The oracle's hits for the pixels `x0..x0 + 4` of row `y` in the lanes of `lanes` (bits),
-    /// in f64x4 lanes (`kernel::methods::wide64`, each lane the oracle's scalar answer bit for
+    /// in f64x4 lanes (`kernel::wide64`, each lane the oracle's scalar answer bit for
     /// bit), depths rounded once to f32.
     fn trace_row(&self, walk: &Walk, (x0, y): (usize, usize), lanes: u32) -> ([f32; 4], [f32; 4]) {
         let t = &self.tables;

@@ -1,79 +1,60 @@
-//! The entry point: [`Options`] (kernel, acceleration, intersection method) and a scene seen by
-//! a camera make a prepared [`Renderer`] (the setup phase), whose [`Renderer::render`] gives a
+//! The entry point: [`Options`] (precision, acceleration, kernel) and a scene seen by a camera
+//! make a prepared [`Renderer`] (the setup phase), whose [`Renderer::render`] gives a
 //! [`Frame`] of ids and depths.
 
-use super::method::{self, Method};
 use super::redecide::Redecide;
-use super::{Frame, Kernel, PacketScene, Setup, f32_depth, packet_blocks, strip_count};
+use super::wide64::Kit64;
+use super::{Frame, Kernel, PacketScene, Plain, Setup, f32_depth, packet_blocks, strip_count};
 use crate::accel::Accel;
 use crate::kernel::packet::{BLOCK_H, BLOCK_W};
+use crate::precision::Precision;
 use crate::soa::IdSet;
 use crate::world::{self, World};
 use std::sync::atomic::AtomicUsize;
 use std::sync::{Arc, Mutex};
 
-/// How to render: which kernel, which acceleration, which intersection method.
-/// `Options::default()` is what the command line does with no flags: 8-lane packets, automatic
-/// acceleration, the default method with `--precision auto` ([`Method::Auto`]).
+/// How to render: in which precision, with which acceleration, by which kernel.
+/// `Options::default()` is what the command line does with no flags: `--precision auto` (f32x8
+/// packets, each hit f32 cannot be trusted with decided again in f64), automatic acceleration.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Options {
-    /// The kernel (`--kernel`).
-    pub kernel: Kernel,
-    /// The acceleration (`--accel`): every kernel takes any.
+    /// The precision (`--precision`).
+    pub precision: Precision,
+    /// The acceleration (`--accel`): every kernel and precision takes any but `world`, which
+    /// has its own kernels and takes the packet kernel only.
     pub accel: Accel,
-    /// The intersection method (`--method`, `--precision`); methods other than
-    /// [`Method::Default`] and [`Method::Auto`] run with the packet kernel only, and
-    /// [`Method::Auto`] with a scalar kernel is that kernel in its own precision.
-    pub method: Method,
+    /// The kernel: packets (the default), or one ray at a time (`--kernel scalar`, the oracle
+    /// in f64; `scalar-f32` with [`Precision::F32`]).
+    pub kernel: Kernel,
 }
 
 impl Options {
-    /// Fails when the options contradict each other: a method other than the default with a
-    /// scalar kernel, or an acceleration with a brute-force method.
+    /// Fails when the options contradict each other: `--accel world` with the scalar kernel.
     pub fn check(&self) -> crate::Result<()> {
-        if self.accel == Accel::World {
-            let precision_only =
-                matches!(self.method, Method::Default | Method::Auto | Method::F64x4);
-            if self.kernel != Kernel::Packet || !precision_only {
-                return Err(crate::Error::usage(
-                    "--accel world has its own setup and kernels: it takes the default kernel \
-                     and method, and --precision chooses how they decide"
-                        .to_string(),
-                ));
-            }
+        if self.accel == Accel::World && self.kernel != Kernel::Packet {
+            return Err(crate::Error::usage(
+                "--accel world has its own setup and kernels: it takes the packet kernel, and \
+                 --precision chooses how they decide"
+                    .to_string(),
+            ));
         }
-        match (self.method, self.kernel) {
-            (m, Kernel::Packet)
-                if m.is_brute_force()
-                    && matches!(self.accel, Accel::Bvh | Accel::Tiles | Accel::World) =>
-            {
-                Err(crate::Error::usage(format!(
-                    "method {} tests every primitive; it takes no acceleration",
-                    m.name()
-                )))
-            }
-            (Method::Default | Method::Auto, _) | (_, Kernel::Packet) => Ok(()),
-            (m, _) => Err(crate::Error::usage(format!(
-                "method {} applies to the packet kernel only",
-                m.name()
-            ))),
-        }
+        Ok(())
     }
 }
 
 impl Default for Options {
     fn default() -> Options {
         Options {
-            kernel: Kernel::Packet,
+            precision: Precision::Auto,
             accel: Accel::Auto,
-            method: Method::Auto,
+            kernel: Kernel::Packet,
         }
     }
 }
 
 /// A scene prepared for one camera and one set of [`Options`]: every per-primitive constant
 /// and acceleration structure is built, so [`Renderer::render`] only traces rays. With
-/// [`Method::Auto`] it borrows the scene, whose shapes the f64 re-decisions read.
+/// [`Precision::Auto`] it borrows the scene, whose shapes the f64 re-decisions read.
 pub struct Renderer<'s> {
     width: usize,
     height: usize,
@@ -85,7 +66,8 @@ pub struct Renderer<'s> {
 
 enum Job<'s> {
     Setup(Box<Setup>, Option<Box<Redecide<'s>>>),
-    Method(Box<dyn method::MethodRender + 's>),
+    /// f64x4 packets (`--precision f64`).
+    Wide64(Box<Kit64>),
     /// `--accel world`: the prepared scene (shared by every view), the camera, the precision
     /// and the view's working buffers.
     World(
@@ -111,8 +93,7 @@ pub(crate) struct Spare {
 
 impl<'s> Renderer<'s> {
     /// Prepares `scene` seen by `camera` (the setup phase). Fails when the options contradict
-    /// each other: a method other than the default with a scalar kernel, or an acceleration
-    /// with a brute-force method.
+    /// each other ([`Options::check`]).
     pub fn new(
         scene: &'s crate::scene::Scene,
         camera: &crate::camera::Camera,
@@ -135,8 +116,8 @@ impl<'s> Renderer<'s> {
             let world = Arc::new(World::new(scene));
             return Ok(Renderer::of_world(world, camera, options, spare));
         }
-        let job = match (options.method, options.kernel) {
-            (Method::Auto, Kernel::Packet) => {
+        let job = match (options.kernel, options.precision) {
+            (Kernel::Packet, Precision::Auto) => {
                 return Ok(Renderer::auto_in(
                     scene,
                     camera,
@@ -145,9 +126,12 @@ impl<'s> Renderer<'s> {
                     left_out,
                 ));
             }
-            (Method::Default | Method::Auto, kernel) => Job::Setup(
+            (Kernel::Packet, Precision::F64) => {
+                Job::Wide64(Box::new(Kit64::with_accel(scene, camera, options.accel)))
+            }
+            (kernel, precision) => Job::Setup(
                 Box::new(Setup::with_accel_in(
-                    kernel,
+                    Plain::of(kernel, precision).expect("a plain kernel"),
                     options.accel,
                     scene,
                     camera,
@@ -157,7 +141,6 @@ impl<'s> Renderer<'s> {
                 )),
                 None,
             ),
-            (m, _) => Job::Method(m.prepare_with(scene, camera, options.accel)),
         };
         Ok(Renderer {
             width: camera.width as usize,
@@ -168,19 +151,14 @@ impl<'s> Renderer<'s> {
     }
 
     /// A renderer of `camera`'s view of a prepared [`World`] (`--accel world`), in the
-    /// precision `options` give: `auto` with [`Method::Auto`] and the packet kernel, f64 with
-    /// the f64 oracle's kernel or [`Method::F64x4`], f32 otherwise.
+    /// precision `options` give.
     pub(crate) fn of_world(
         world: Arc<World>,
         camera: &crate::camera::Camera,
         options: &Options,
         spare: Spare,
     ) -> Renderer<'s> {
-        let precision = match (options.method, options.kernel) {
-            (Method::F64x4, _) | (_, Kernel::ScalarF64) => world::Precision::F64,
-            (Method::Auto, Kernel::Packet) => world::Precision::Auto,
-            _ => world::Precision::F32,
-        };
+        let precision = options.precision;
         Renderer {
             width: camera.width as usize,
             height: camera.height as usize,
@@ -200,7 +178,7 @@ impl<'s> Renderer<'s> {
                 },
                 redo.map(|r| r.into_spare()).unwrap_or_default(),
             ),
-            Job::Method(_) | Job::World(..) => Default::default(),
+            Job::Wide64(_) | Job::World(..) => Default::default(),
         };
         Spare {
             frame,
@@ -211,7 +189,7 @@ impl<'s> Renderer<'s> {
     }
 
     /// The packet kernel with the f32 hits that cannot be trusted decided again in f64
-    /// ([`Method::Auto`], `--precision auto`).
+    /// ([`Precision::Auto`], `--precision auto`).
     pub(crate) fn auto(
         scene: &'s crate::scene::Scene,
         camera: &crate::camera::Camera,
@@ -250,22 +228,12 @@ impl<'s> Renderer<'s> {
         }
     }
 
-    /// The acceleration in use: `none` for the brute-force methods.
+    /// The acceleration in use.
     pub fn accel(&self) -> Accel {
         match &self.job {
             Job::Setup(s, _) => s.accel(),
-            Job::Method(m) => m.accel(),
+            Job::Wide64(k) => k.accel(),
             Job::World(..) => Accel::World,
-        }
-    }
-
-    /// Whether the render spreads over the current rayon pool's threads (every kernel of the
-    /// default method, and the f64x4 method); the brute-force methods trace on the calling
-    /// thread.
-    pub fn is_parallel(&self) -> bool {
-        match &self.job {
-            Job::Setup(..) | Job::World(..) => true,
-            Job::Method(m) => m.is_parallel(),
         }
     }
 
@@ -305,8 +273,8 @@ impl<'s> Renderer<'s> {
         strip_count(self.height)
     }
 
-    /// [`Renderer::render`], adding 1 to `progress` per finished strip of rows (methods other
-    /// than the default count nothing).
+    /// [`Renderer::render`], adding 1 to `progress` per finished strip of rows (f64 packets and
+    /// `--accel world` count nothing).
     pub fn render_counting(&self, progress: Option<&AtomicUsize>) -> Frame<f32> {
         self.render_marking(progress).0
     }
@@ -324,7 +292,7 @@ impl<'s> Renderer<'s> {
                 }
                 other => (other.render_counting(w, h, progress), Vec::new()),
             },
-            Job::Method(m) => (f32_depth(m.render()), Vec::new()),
+            Job::Wide64(k) => (f32_depth(k.render()), Vec::new()),
             Job::World(world, camera, precision, scratch) => {
                 let mut scratch = scratch.lock().unwrap_or_else(|e| e.into_inner());
                 world.render_marking(camera, *precision, &mut scratch, spare())
@@ -337,24 +305,22 @@ impl<'s> Renderer<'s> {
 mod tests {
     use super::*;
 
-    /// `--accel world` takes the default kernel and method (and f64x4: `--precision f64`), and
-    /// refuses the scalar kernels and the lab's methods.
+    /// `--accel world` takes every precision with the packet kernel, and refuses the scalar
+    /// kernel.
     #[test]
-    fn world_takes_the_precisions_and_refuses_the_rest() {
-        let with = |kernel, method| {
+    fn world_takes_the_precisions_and_refuses_the_scalar_kernel() {
+        let with = |kernel, precision| {
             Options {
-                kernel,
+                precision,
                 accel: Accel::World,
-                method,
+                kernel,
             }
             .check()
         };
-        for m in [Method::Default, Method::Auto, Method::F64x4] {
-            assert!(with(Kernel::Packet, m).is_ok(), "{m:?}");
+        for p in Precision::ALL {
+            assert!(with(Kernel::Packet, p).is_ok(), "{p:?}");
+            assert!(with(Kernel::Scalar, p).is_err(), "{p:?}");
         }
-        assert!(with(Kernel::ScalarF64, Method::Auto).is_err());
-        assert!(with(Kernel::ScalarF32, Method::Default).is_err());
-        assert!(with(Kernel::Packet, Method::Mt).is_err());
     }
     use crate::camera::Camera;
     use std::path::Path;
@@ -367,9 +333,9 @@ mod tests {
         let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/scene2.sc");
         let scene = crate::scene::load_scene(&path).expect("scene 2");
         let camera = Camera::for_scene(&scene, 96, 64, None).expect("a camera");
-        for method in [Method::Default, Method::Auto] {
+        for precision in [Precision::F32, Precision::Auto] {
             let options = Options {
-                method,
+                precision,
                 ..Options::default()
             };
             let r = Renderer::new(&scene, &camera, &options).expect("a renderer");
@@ -380,10 +346,14 @@ mod tests {
             let buffer = dirty.ids.as_ptr();
             r.recycle(dirty);
             let again = r.render();
-            assert_eq!(again, fresh, "{method:?}");
-            assert_eq!(again.ids.as_ptr(), buffer, "{method:?}: the buffers reused");
+            assert_eq!(again, fresh, "{precision:?}");
+            assert_eq!(
+                again.ids.as_ptr(),
+                buffer,
+                "{precision:?}: the buffers reused"
+            );
             r.recycle(Frame::new(10, 10, 0.0));
-            assert_eq!(r.render(), fresh, "{method:?}: another size");
+            assert_eq!(r.render(), fresh, "{precision:?}: another size");
         }
     }
 }

@@ -6,10 +6,11 @@ use super::{Frame, PacketScene, f32_depth, render_packet_blocks, render_scalar_c
 use crate::accel::{Accel, Bvh, Tiles};
 use crate::camera::RayTables;
 use crate::kernel::packet::{BLOCK_H, BLOCK_W};
+use crate::precision::Precision;
 use crate::soa::{IdSet, Packed, Prepared};
 use std::sync::atomic::AtomicUsize;
 
-/// The acceleration structure the scalar kernels and the f64x4 method trace through, built
+/// The acceleration structure the scalar kernels and the f64x4 packets trace through, built
 /// over f64 constant records ([`prepare_f64`]). The same structures as the packet kernel's, and
 /// as conservative for the f64 kernels (see `Tiles::trace_x1`, `accel::bvh::trace_bvh_x1`).
 #[derive(Debug, Clone)]
@@ -57,9 +58,23 @@ pub fn prepare_f64(
     }
 }
 
-/// Which kernel renders.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// Which kernel renders (`--kernel`); [`Precision`] says in what.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Kernel {
+    /// 4x2-pixel packets: f32x8 lanes (`auto` re-deciding the untrusted hits in f64), or f64x4
+    /// lanes with [`Precision::F64`].
+    #[default]
+    Packet,
+    /// One ray at a time: in f32 with [`Precision::F32`], else in f64 (the oracle; `auto` has
+    /// nothing to re-decide there).
+    Scalar,
+}
+
+/// A kernel in one precision with nothing re-decided: what [`Setup`] prepares and times alone
+/// (f32 packets, and the scalar kernel in f32 and in f64). `--precision auto` and f64 packets
+/// are [`super::Renderer`]'s.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Plain {
     /// 8-lane f32 packets.
     Packet,
     /// One ray at a time in f32.
@@ -68,13 +83,25 @@ pub enum Kernel {
     ScalarF64,
 }
 
+impl Plain {
+    /// The plain kernel of `kernel` in `precision`: `None` for the packets in `auto` or f64.
+    pub fn of(kernel: Kernel, precision: Precision) -> Option<Plain> {
+        match (kernel, precision) {
+            (Kernel::Packet, Precision::F32) => Some(Plain::Packet),
+            (Kernel::Packet, _) => None,
+            (Kernel::Scalar, Precision::F32) => Some(Plain::ScalarF32),
+            (Kernel::Scalar, _) => Some(Plain::ScalarF64),
+        }
+    }
+}
+
 /// Everything a kernel needs before its first ray: the setup phase.
 pub enum Setup {
-    /// [`Kernel::Packet`]: the SoA stores (and acceleration), f32 ray tables padded to blocks.
+    /// [`Plain::Packet`]: the SoA stores (and acceleration), f32 ray tables padded to blocks.
     Packet(Box<PacketScene>, RayTables<f32>),
-    /// [`Kernel::ScalarF32`]: f32 constant records, f32 ray tables and the acceleration.
+    /// [`Plain::ScalarF32`]: f32 constant records, f32 ray tables and the acceleration.
     ScalarF32(Prepared<f32>, RayTables<f32>, Structure),
-    /// [`Kernel::ScalarF64`]: f64 constant records, f64 ray tables and the acceleration (the
+    /// [`Plain::ScalarF64`]: f64 constant records, f64 ray tables and the acceleration (the
     /// oracle).
     ScalarF64(Prepared<f64>, RayTables<f64>, Structure),
 }
@@ -82,7 +109,7 @@ pub enum Setup {
 impl Setup {
     /// The setup of `kernel` for `scene` seen by `camera`, with automatic acceleration.
     pub fn new(
-        kernel: Kernel,
+        kernel: Plain,
         scene: &crate::scene::Scene,
         camera: &crate::camera::Camera,
     ) -> Setup {
@@ -92,7 +119,7 @@ impl Setup {
     /// As [`Setup::new`], with the acceleration chosen by the caller (every kernel takes every
     /// acceleration).
     pub fn with_accel(
-        kernel: Kernel,
+        kernel: Plain,
         accel: Accel,
         scene: &crate::scene::Scene,
         camera: &crate::camera::Camera,
@@ -111,7 +138,7 @@ impl Setup {
     /// [`Setup::with_accel`], the packet kernel's buffers written into `spare`'s
     /// ([`PacketScene::new_in`]); the scalar kernels drop it.
     pub fn with_accel_in(
-        kernel: Kernel,
+        kernel: Plain,
         accel: Accel,
         scene: &crate::scene::Scene,
         camera: &crate::camera::Camera,
@@ -120,17 +147,17 @@ impl Setup {
         left_out: Option<&IdSet>,
     ) -> Setup {
         match kernel {
-            Kernel::Packet => Setup::Packet(
+            Plain::Packet => Setup::Packet(
                 Box::new(PacketScene::new_in(
                     scene, camera, accel, spare, keep, left_out,
                 )),
                 camera.tables(BLOCK_W as u32, BLOCK_H as u32),
             ),
-            Kernel::ScalarF32 => {
+            Plain::ScalarF32 => {
                 let (p, structure) = prepare_f64(accel, scene, camera);
                 Setup::ScalarF32(p.cast(), camera.tables(1, 1), structure)
             }
-            Kernel::ScalarF64 => {
+            Plain::ScalarF64 => {
                 let (p, structure) = prepare_f64(accel, scene, camera);
                 Setup::ScalarF64(p, camera.tables(1, 1), structure)
             }

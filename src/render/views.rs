@@ -67,8 +67,6 @@ pub struct Rendered {
     pub render_s: f64,
     /// The acceleration used.
     pub accel: Accel,
-    /// Whether the render spread over the current pool's threads.
-    pub parallel: bool,
     /// Whether f32 hits that cannot be trusted were decided again in f64.
     pub redecides: bool,
     /// Primitives the view left out (clusters off screen, and clusters proven hidden).
@@ -143,7 +141,6 @@ impl<'s> Views<'s> {
                 setup_s,
                 render_s: clock.secs(),
                 accel: Accel::World,
-                parallel: true,
                 redecides: renderer.redecides(),
                 left_out: 0,
                 renders: 1,
@@ -175,7 +172,6 @@ impl<'s> Views<'s> {
             setup_s: planned + setup,
             render_s: render,
             accel: renderer.accel(),
-            parallel: renderer.is_parallel(),
             redecides: renderer.redecides(),
             left_out: plan.as_ref().map_or(0, |p| p.left_out.len()),
             renders: 1,
@@ -355,9 +351,9 @@ mod tests {
     /// one before (with `--precision auto` and `f32`), give a fresh renderer's ids and depths.
     #[test]
     fn every_view_renders_as_a_renderer_of_its_own() {
-        for method in [crate::Method::Auto, crate::Method::Default] {
+        for precision in [crate::Precision::Auto, crate::Precision::F32] {
             let options = Options {
-                method,
+                precision,
                 ..Options::default()
             };
             views_render_alone(&options);

@@ -1,6 +1,6 @@
-//! The f64x4 method (`--precision f64`, `--method f64x4`): the default kernels in f64x4 lanes
-//! (`kernel::methods::wide64`, each lane the f64 oracle bit for bit), a 4x2 pixel block traced
-//! as two f64x4 rows. Unlike the lab's brute-force drivers (`kits.rs`) it takes every
+//! f64x4 packets (`--precision f64`; the lab's `f64x4` method): the default kernels in f64x4
+//! lanes (`kernel::wide64`, each lane the f64 oracle bit for bit), a 4x2 pixel block traced as
+//! two f64x4 rows. Unlike the lab's brute-force drivers (`lab/src/kits.rs`) it takes every
 //! acceleration, through the same structures as the scalar oracle ([`super::Structure`]), and
 //! renders strips on every thread of the current rayon pool, so ids and depths are
 //! bit-identical at any thread count and to `--accel none` (tests/accel.rs).
@@ -9,7 +9,7 @@ use super::{Frame, Structure, for_each_strip, prepare_f64};
 use crate::accel::Accel;
 use crate::accel::bvh::trace_bvh_x4d;
 use crate::camera::{Camera, RayTables};
-use crate::kernel::methods::wide64::{Hit4d, dir_x4d};
+use crate::kernel::wide64::{Hit4d, dir_x4d};
 use crate::scene::Scene;
 use crate::soa::trace::ranges_x4d;
 use crate::soa::{Prepared, Records};

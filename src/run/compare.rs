@@ -3,12 +3,10 @@
 
 use super::load_view;
 use crate::cli::CompareSettings;
-use crate::compare::{
-    EDGE_BAND, LIST_UNEXCUSED, TIE_REL, compare_auto, compare_method, compare_with, diff_picture,
-};
+use crate::compare::{EDGE_BAND, LIST_UNEXCUSED, TIE_REL, compare_precision, diff_picture};
 use crate::error::{Error, Result};
 use crate::output::{self, OutputKind, OutputSet};
-use crate::render::Method;
+use crate::precision::Precision;
 use crate::words::count;
 
 /// Runs the compare command: prints the report, writes the diff image, fails past tolerance.
@@ -24,20 +22,13 @@ pub(crate) fn compare_command(s: &CompareSettings) -> Result<()> {
         .collect();
     let mut set = OutputSet::create(&outs, &[("the input scene", &s.view.input)])?;
     let (scene, camera) = load_view(&s.view, &set)?;
-    let method = s.view.method;
-    let (report, oracle) = match method {
-        Method::Default => compare_with(&scene, &camera, s.view.accel),
-        Method::Auto => compare_auto(&scene, &camera, s.view.accel),
-        m => compare_method(&scene, &camera, m),
-    };
+    let precision = s.view.precision;
+    let (report, oracle) = compare_precision(&scene, &camera, precision, s.view.accel);
     let r = &report;
     let ppm = |n: usize| n as f64 * 1e6 / r.pixels.max(1) as f64;
     println!("scene       {}", s.view.input.display());
-    println!("precision   {}", super::precision_name(None, method));
-    println!(
-        "method      {} against the f64 scalar oracle",
-        super::method_name(method)
-    );
+    println!("precision   {}", precision.name());
+    println!("against     the f64 scalar oracle");
     println!(
         "pixels      {} ({}x{})",
         r.pixels, camera.width, camera.height
@@ -73,7 +64,7 @@ pub(crate) fn compare_command(s: &CompareSettings) -> Result<()> {
         };
         println!("  unexcused at (x, y), {shown}: {}", first.join(" "));
     }
-    if method == Method::Auto {
+    if precision == Precision::Auto {
         println!(
             "re-decided  {} in f64 ({:.4}%)",
             count(r.redecided.len(), "pixel", "pixels"),

@@ -10,7 +10,6 @@ use crate::camera::Camera;
 use crate::cli::{Command, ViewSettings};
 use crate::error::{Error, Result};
 use crate::output::OutputSet;
-use crate::render::Method;
 use crate::scene::{Scene, load_scene_meshes};
 use std::path::PathBuf;
 
@@ -88,21 +87,6 @@ fn frame_mesh_alone(scene: &mut Scene, v: &ViewSettings, turntable: bool) {
     {
         scene.camera = camera;
     }
-}
-
-/// The name `--method` takes for `method`: the default method with `--precision auto` runs as
-/// [`Method::Auto`], reported as the default method's name, its precision apart.
-fn method_name(method: Method) -> &'static str {
-    match method {
-        Method::Auto => Method::Default.name(),
-        m => m.name(),
-    }
-}
-
-/// The precision that ran, as `--precision` names it: a scalar kernel's own (`kernel`), else
-/// the method's (`auto` for [`Method::Auto`]).
-fn precision_name(kernel: Option<&'static str>, method: Method) -> &'static str {
-    kernel.unwrap_or(method.precision())
 }
 
 /// A rayon pool of the requested size (all cores when `None`).

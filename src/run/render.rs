@@ -2,27 +2,17 @@
 
 use super::load_view;
 use crate::camera::Camera;
-use crate::cli::{KernelArg, RenderSettings};
+use crate::cli::RenderSettings;
 use crate::error::{Error, Result};
 use crate::frame::Frame;
 use crate::limits::{BYTES_PER_PIXEL, MAX_PIXELS};
 use crate::output::{self, OutputKind, OutputSet};
 use crate::progress;
-use crate::render::{Kernel, Options, Renderer};
+use crate::render::{Options, Renderer};
 use crate::scene::Scene;
 use crate::stats::{Stats, scene_name, secs};
 use std::path::Path;
 use std::time::Instant;
-
-impl From<KernelArg> for Kernel {
-    fn from(k: KernelArg) -> Kernel {
-        match k {
-            KernelArg::Simd => Kernel::Packet,
-            KernelArg::Scalar => Kernel::ScalarF64,
-            KernelArg::ScalarF32 => Kernel::ScalarF32,
-        }
-    }
-}
 
 /// The outputs the render command writes: (flag, path, kind), the image first.
 fn outputs(s: &RenderSettings) -> Vec<(&'static str, &Path, OutputKind)> {
@@ -155,7 +145,6 @@ pub(crate) fn render_command(s: &RenderSettings) -> Result<()> {
     // Ctrl-C / SIGTERM remove pending temporary files, exit 130.
     output::install_interrupt_cleanup();
     check_memory(s.view.width, s.view.height)?;
-    let method = s.view.method;
     let mut set = OutputSet::create(&outputs(s), &[("the input scene", &s.view.input)])?;
     let outputs = set
         .paths()
@@ -188,21 +177,16 @@ pub(crate) fn render_command(s: &RenderSettings) -> Result<()> {
     lap("parse", &mut stats, &mut clock);
 
     let options = Options {
-        kernel: s.kernel.into(),
+        precision: s.view.precision,
         accel: s.view.accel,
-        method,
+        kernel: s.kernel.kernel(),
     };
     // The renderer borrows the scene: `--precision auto` re-decides hits from its shapes.
     let renderer = Renderer::new(&scene, &camera, &options)?;
     stats.accel = renderer.accel().name();
-    // The default method renders on the pool; the other methods on one thread.
-    stats.threads = if renderer.is_parallel() {
-        rayon::current_num_threads()
-    } else {
-        1
-    };
-    stats.method = super::method_name(method);
-    stats.precision = super::precision_name(s.kernel.precision(), method);
+    // Every kernel and precision renders on the pool.
+    stats.threads = rayon::current_num_threads();
+    stats.precision = s.view.precision.name();
     lap("setup", &mut stats, &mut clock);
 
     let mut frame = None;

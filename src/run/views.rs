@@ -226,9 +226,9 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
     let cameras = cameras(s, source, &lines, &scene)?;
 
     let options = Options {
-        kernel: s.kernel.into(),
+        precision: s.view.precision,
         accel: s.view.accel,
-        method: s.view.method,
+        kernel: s.kernel.kernel(),
     };
     let views = Views::new(&scene, &options)?;
     let loaded = secs(start.elapsed());
@@ -246,8 +246,7 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
         .chain(s.stats.iter().map(|p| ("stats", p.display().to_string())));
     let mut stats = Stats {
         primitives: scene.counts(),
-        method: super::method_name(s.view.method),
-        precision: super::precision_name(s.kernel.precision(), s.view.method),
+        precision: s.view.precision.name(),
         ..run_stats(s, outputs.collect())
     };
     if let (Some(p), ViewSource::Orbit(n)) = (&s.save_views, source) {
@@ -308,11 +307,7 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
                 *stats.redecided.get_or_insert(0) += view.redecided.len();
             }
             stats.accel = view.accel.name();
-            stats.threads = if view.parallel {
-                crate::par::current_num_threads()
-            } else {
-                1
-            };
+            stats.threads = crate::par::current_num_threads();
             stats.renders.push(time.render_s);
             let clock = Instant::now();
             let rgb = shade_frame(s, &frame, &scene, camera);

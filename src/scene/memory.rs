@@ -49,7 +49,7 @@ pub fn parse_scene_with(
 /// An OBJ or PLY file's bytes (the format by `file`'s extension: `.ply` is PLY, anything else
 /// OBJ) as a scene of their own, as `lanecast -i mesh.obj` renders the file: its faces as
 /// triangles in file order (ids from 0, scene line 0), seen by the mesh's framing camera
-/// ([`framing_camera`](crate::experimental::scene::parse::framing_camera)).
+/// (`scene::parse::framing_camera`).
 pub fn parse_mesh_bytes(bytes: &[u8], file: &Path) -> Result<Scene> {
     let scene = parse::mesh_scene(file, mesh_from_bytes(bytes, file, MAX_PRIMITIVES)?)?;
     range::f32_range(&scene)?;

@@ -13,7 +13,7 @@
 //! structures call the same loops over the ranges their leaves and tiles list.
 
 use super::{Columns, Packed, Records, Stored};
-use crate::kernel::methods::wide64::Hit4d;
+use crate::kernel::wide64::Hit4d;
 use crate::kernel::{Hit, Hit8};
 use crate::real::{Real, V3};
 use std::ops::Range;

@@ -64,16 +64,8 @@ pub const T_TIGHT: f64 = 0.4e-5;
 /// boundary band `compare` excuses (`compare::EDGE_BAND`).
 pub const EDGE_TIGHT: f64 = 1.5e-6;
 
-/// How a view is decided.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Precision {
-    /// f32, and f64 where the f32 answer is not trusted (`--precision auto`).
-    Auto,
-    /// f32 alone.
-    F32,
-    /// f64 everywhere: the oracle.
-    F64,
-}
+/// How a view is decided: the product's one [`Precision`](crate::Precision).
+pub use crate::precision::Precision;
 
 /// A scene prepared once for any camera: see the module comment.
 #[derive(Debug)]

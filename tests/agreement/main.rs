@@ -8,7 +8,7 @@ mod common;
 use common::*;
 use glam::DVec3;
 use lanecast::compare::{Report, compare};
-use lanecast::experimental::render::{Kernel, Setup};
+use lanecast::experimental::render::{Plain, Setup};
 use lanecast::scene::{Scene, Shape};
 
 /// Bounds on the depth difference between the packet kernel and the oracle, over the pixels
@@ -145,8 +145,8 @@ fn reference(mesh: Mesh, scene: &Scene) -> Option<HitTest> {
 fn check(name: &str, scene: &Scene, w: u32, h: u32, mesh: Mesh, min_hit: f64) -> Report {
     let camera = camera_of(scene, w, h);
     let (report, oracle) = compare(scene, &camera);
-    let packet = Setup::new(Kernel::Packet, scene, &camera).render(w as usize, h as usize);
-    let scalar = Setup::new(Kernel::ScalarF32, scene, &camera).render(w as usize, h as usize);
+    let packet = Setup::new(Plain::Packet, scene, &camera).render(w as usize, h as usize);
+    let scalar = Setup::new(Plain::ScalarF32, scene, &camera).render(w as usize, h as usize);
     let hit = oracle.ids.iter().filter(|&&i| i >= 0).count();
     // Depth error against its conditioning, per pixel where both kernels hit the same
     // primitive: rel * cos(incidence), in units of u.

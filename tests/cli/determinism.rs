@@ -4,7 +4,7 @@
 use crate::common;
 
 use common::*;
-use lanecast::experimental::render::{Frame, Kernel, Setup};
+use lanecast::experimental::render::{Frame, Plain, Setup};
 use lanecast::scene::Scene;
 use std::fs;
 
@@ -111,7 +111,7 @@ fn frames_are_identical_at_one_two_and_three_threads() {
     let (w, h) = (203, 150);
     for (name, scene) in &scenes {
         let camera = camera_of(scene, w as u32, h as u32);
-        for kernel in [Kernel::Packet, Kernel::ScalarF32, Kernel::ScalarF64] {
+        for kernel in [Plain::Packet, Plain::ScalarF32, Plain::ScalarF64] {
             let setup = Setup::new(kernel, scene, &camera);
             let one = frame_in_pool(&setup, w, h, 1);
             assert!(one.ids.iter().any(|&i| i >= 0), "{name}: nothing hit");

@@ -93,67 +93,22 @@ fn stats_of(dir: &TempDir, extra: &[&str]) -> serde_json::Value {
     v
 }
 
+/// `--method` is the accuracy lab's (`lab-render`), not the product's: refused as an unknown
+/// argument by render and compare alike, naming it.
 #[test]
-fn an_acceleration_a_lab_method_cannot_use_is_refused() {
-    let dir = with_scene("flags-method-accel");
-    for (extra, words) in [
-        (
-            &["--method", "mt", "--accel", "bvh"][..],
-            &[
-                "--accel bvh",
-                "--method mt",
-                "brute-force",
-                "no acceleration",
-            ][..],
-        ),
-        (
-            &["--method", "watertight", "--accel", "tiles"],
-            &["--accel tiles", "--method watertight"],
-        ),
-    ] {
-        refused(&dir, &render_args(extra), words);
-        refused(&dir, &compare_args(extra), words);
-    }
-    // none and auto are what the lab's driver does: accepted, and the record says none
-    for accel in ["none", "auto"] {
-        let v = stats_of(&dir, &["--method", "mt", "--accel", accel]);
-        assert_eq!(
-            (v["method"].as_str(), v["accel"].as_str()),
-            (Some("mt"), Some("none"))
+fn method_is_the_labs_and_refused_here() {
+    let dir = with_scene("flags-method");
+    for m in ["mt", "eplane+stable", "f64x4"] {
+        refused(
+            &dir,
+            &render_args(&["--method", m]),
+            &["--method", "lab-render"],
         );
-        accepted(&dir, &compare_args(&["--method", "mt", "--accel", accel]));
-    }
-}
-
-#[test]
-fn a_precision_that_contradicts_the_method_is_refused() {
-    let dir = with_scene("flags-method-precision");
-    refused(
-        &dir,
-        &render_args(&["--method", "f64x4", "--precision", "f32"]),
-        &["--precision f32", "--method f64x4", "f64"],
-    );
-    refused(
-        &dir,
-        &render_args(&["--method", "mt", "--precision", "f64"]),
-        &["--precision f64", "--method mt", "f32"],
-    );
-    refused(
-        &dir,
-        &compare_args(&["--method", "world-f32", "--precision", "f64"]),
-        &["--precision f64", "--method world-f32"],
-    );
-    // the agreeing pairs run
-    for extra in [
-        &["--method", "f64x4", "--precision", "f64"][..],
-        &["--method", "f64x4"],
-        &["--precision", "f64"],
-        &["--method", "mt", "--precision", "f32"],
-        &["--method", "eplane+stable", "--precision", "f64"],
-    ] {
-        let v = stats_of(&dir, extra);
-        let want = if extra.contains(&"mt") { "mt" } else { "f64x4" };
-        assert_eq!(v["method"].as_str(), Some(want), "{extra:?}");
+        refused(
+            &dir,
+            &compare_args(&["--method", m]),
+            &["--method", "lab-render"],
+        );
     }
 }
 
@@ -191,25 +146,6 @@ fn precision_with_a_scalar_kernel_must_be_the_kernels_own() {
 }
 
 #[test]
-fn a_lab_method_with_a_scalar_kernel_is_refused() {
-    let dir = with_scene("flags-kernel-method");
-    for kernel in ["scalar", "scalar-f32"] {
-        for method in ["mt", "f64x4"] {
-            refused(
-                &dir,
-                &render_args(&["--kernel", kernel, "--method", method]),
-                &[&format!("--method {method}"), &format!("--kernel {kernel}")],
-            );
-        }
-        // the default method, typed, is what the scalar kernels compute
-        accepted(
-            &dir,
-            &render_args(&["--kernel", kernel, "--method", "eplane+stable"]),
-        );
-    }
-}
-
-#[test]
 fn every_kernel_and_precision_takes_every_acceleration() {
     let dir = with_scene("flags-kernel-accel");
     for accel in ["auto", "none", "tiles", "bvh"] {
@@ -220,47 +156,42 @@ fn every_kernel_and_precision_takes_every_acceleration() {
             );
             assert_eq!(v["threads"].as_u64(), Some(2), "{kernel} {accel}");
         }
-        // the f64x4 method, by --precision and by --method; the record names what ran
-        for m in [&["--precision", "f64"][..], &["--method", "f64x4"]] {
+        // every precision of the packets; the record names what ran
+        for m in [
+            &["--precision", "f64"][..],
+            &["--precision", "f32"],
+            &["--precision", "auto"],
+        ] {
             let v = stats_of(
                 &dir,
                 &[m, &["--accel", accel, "--threads", "2"][..]].concat(),
             );
             assert_eq!(v["threads"].as_u64(), Some(2), "{m:?} {accel}");
-            assert_eq!(v["precision"], "f64");
+            assert_eq!(v["precision"], m[1]);
             if accel == "bvh" || accel == "tiles" {
                 assert_eq!(v["accel"], accel);
             }
             accepted(&dir, &compare_args(&[m, &["--accel", accel][..]].concat()));
         }
     }
-    // every acceleration with the simd kernel and the default method
+    // every acceleration with the simd kernel and the default precision
     for accel in ["auto", "none", "tiles", "bvh"] {
         accepted(&dir, &render_args(&["--kernel", "simd", "--accel", accel]));
         accepted(&dir, &compare_args(&["--accel", accel]));
     }
 }
 
+/// Every kernel and precision renders on the pool's threads, and the record says how many.
 #[test]
-fn threads_a_one_thread_method_cannot_use_are_refused() {
+fn every_precision_renders_on_the_threads_asked_for() {
     let dir = with_scene("flags-threads");
-    let msg = refused(
-        &dir,
-        &render_args(&["--method", "mt", "--threads", "2"]),
-        &["--threads 2", "--method mt", "1 thread,", "2 threads"],
-    );
-    assert!(!msg.contains("1 threads"), "{msg}");
-    // one thread is what runs: accepted, and recorded
-    let v = stats_of(&dir, &["--method", "mt", "--threads", "1"]);
-    assert_eq!(v["threads"].as_u64(), Some(1));
-    // without --threads the method still runs on one thread, and the record says so
-    let v = stats_of(&dir, &["--method", "naive"]);
-    assert_eq!(v["threads"].as_u64(), Some(1));
-    // the default method uses them
-    let v = stats_of(&dir, &["--threads", "2"]);
-    assert_eq!(v["threads"].as_u64(), Some(2));
-    // compare: the oracle runs on the pool, so --threads applies there
-    accepted(&dir, &compare_args(&["--method", "mt", "--threads", "2"]));
+    for p in ["auto", "f32", "f64"] {
+        let v = stats_of(&dir, &["--precision", p, "--threads", "2"]);
+        assert_eq!(v["threads"].as_u64(), Some(2), "{p}");
+        let v = stats_of(&dir, &["--precision", p, "--threads", "1"]);
+        assert_eq!(v["threads"].as_u64(), Some(1), "{p}");
+        accepted(&dir, &compare_args(&["--precision", p, "--threads", "2"]));
+    }
 }
 
 #[test]
@@ -351,40 +282,30 @@ fn out_of_range_values_and_flags_of_the_other_command_are_refused() {
     );
 }
 
-/// `-time`, `--stats` and `compare` said "method auto" for the default run, a name `--method`
-/// refuses: precision and method are reported under their own names, each a value its flag
-/// accepts ("precision auto, method eplane+stable"), and the reported method, given back to
-/// `--method`, runs.
+/// `-time`, `--stats` and `compare` report the precision that ran, as `--precision` names it
+/// (a scalar kernel's own), and no intersection method: those are the lab's (`lab-render`).
 #[test]
-fn precision_and_method_are_reported_under_their_own_names() {
+fn the_precision_is_reported_and_no_method() {
     let dir = with_scene("flags-report-names");
-    for (extra, precision, method) in [
-        (&[][..], "auto", "eplane+stable"),
-        (&["--precision", "f32"], "f32", "eplane+stable"),
-        (&["--precision", "f64"], "f64", "f64x4"),
-        (&["--method", "mt"], "f32", "mt"),
-        (&["--kernel", "scalar"], "f64", "eplane+stable"),
-        (&["--kernel", "scalar-f32"], "f32", "eplane+stable"),
+    for (extra, precision) in [
+        (&[][..], "auto"),
+        (&["--precision", "f32"], "f32"),
+        (&["--precision", "f64"], "f64"),
+        (&["--kernel", "scalar"], "f64"),
+        (&["--kernel", "scalar-f32"], "f32"),
     ] {
         let v = stats_of(&dir, extra);
         assert_eq!(v["precision"].as_str(), Some(precision), "{extra:?}");
-        assert_eq!(v["method"].as_str(), Some(method), "{extra:?}");
+        assert!(v.get("method").is_none(), "{extra:?}: {v}");
 
         let mut args = render_args(extra);
         args.push("-time");
         let text = accepted(&dir, &args);
         assert!(
-            text.contains(&format!("precision {precision}, method {method},")),
+            text.contains(&format!("precision {precision}, accel ")),
             "{extra:?}: {text}"
         );
-        assert!(!text.contains("method auto"), "{extra:?}: {text}");
-
-        // the name reported is one --method takes
-        let mut again = render_args(extra);
-        if !extra.contains(&"--method") {
-            again.extend(["--method", method]);
-        }
-        accepted(&dir, &again);
+        assert!(!text.contains("method"), "{extra:?}: {text}");
 
         if !extra.contains(&"--kernel") {
             let args = compare_args(extra);
@@ -392,15 +313,12 @@ fn precision_and_method_are_reported_under_their_own_names() {
             assert_success(&o, &args.join(" "));
             let report = stdout(&o);
             assert!(
-                report.contains(&format!("\nprecision   {precision}\n")),
-                "{extra:?}: {report}"
-            );
-            assert!(
                 report.contains(&format!(
-                    "\nmethod      {method} against the f64 scalar oracle"
+                    "\nprecision   {precision}\nagainst     the f64 scalar oracle\n"
                 )),
                 "{extra:?}: {report}"
             );
+            assert!(!report.contains("method"), "{extra:?}: {report}");
         }
     }
 }

@@ -205,7 +205,7 @@ fn check_pixels(
     seen: &mut Seen,
 ) {
     use crate::accel::bvh::{trace_bvh_x1, trace_bvh_x4d, trace_bvh_x8};
-    use crate::kernel::methods::wide64::Hit4d;
+    use crate::kernel::wide64::Hit4d;
     use crate::soa::trace::trace_x1;
     let (t32, t64) = (cam.tables::<f32>(1, 1), cam.tables::<f64>(1, 1));
     let prepared = crate::soa::Prepared::new(scene, cam.eye);

@@ -3,7 +3,7 @@
 
 use super::{TILE_H, TILE_W, Tiles, packet_bits};
 use crate::kernel::Hit;
-use crate::kernel::methods::wide64::Hit4d;
+use crate::kernel::wide64::Hit4d;
 use crate::real::{Real, V3};
 use crate::soa::Records;
 use crate::soa::trace::ranges_x1;

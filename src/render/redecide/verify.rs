@@ -4,9 +4,9 @@
 //! [`BUDGET`] of its distance.
 
 use super::{BUDGET, ORACLE_SLOTS, Redecide, Walk};
-use crate::kernel::methods::wide64::dir_x4d;
 use crate::kernel::polygon::{QuadK, TriangleK};
 use crate::kernel::sphere::{SphereK, sphere_disc};
+use crate::kernel::wide64::dir_x4d;
 use crate::scene::Shape;
 use std::cell::Ref;
 use wide::f64x4;

@@ -1,6 +1,7 @@
-//! Alternative intersection methods, measured against the default kernels (`kernel::polygon`,
-//! `kernel::sphere`) and the f64 oracle by the accuracy lab (lab/ crate, `cargo bench --bench
-//! lab`). One file per method family, each with its 1-lane form (`*_x1`, generic over
+//! The intersection methods other than lanecast's own, measured against the default kernels
+//! (`lanecast::experimental::kernel::{polygon, sphere}`) and the f64 oracle by this lab
+//! (`cargo bench -p lanecast-lab --bench lab`, `lab-render`). They live here, not in the engine:
+//! the product renders with its own kernels only. One file per method family, each with its 1-lane form (`*_x1`, generic over
 //! [`Real`]: f32 and f64) and its 8-lane form (`*_x8`, `wide::f32x8`) side by side under a
 //! header: formula, source, assumptions, precision, where it fails, which test proves it.
 //!
@@ -9,7 +10,6 @@
 //!   fallback for edge functions that are exactly zero.
 //! - `plane.rs`: the seed's plane hit + inside test by edge cross products.
 //! - `sphere_naive.rs`: the textbook quadratic b^2 - 4ac.
-//! - `wide64.rs`: the default methods (edge planes, stable sphere) in `wide::f64x4` lanes.
 //! - `world.rs`: the default methods' constants computed the classic way, in f32 from world
 //!   coordinates rounded to f32 (what eye-relative f64 setup avoids).
 //!
@@ -24,12 +24,11 @@
 pub mod mt;
 pub mod plane;
 pub mod sphere_naive;
-pub mod wide64;
 pub mod woop;
 pub mod world;
 
-use crate::real::{Real, V3};
 use glam::DVec3;
+use lanecast::experimental::real::{Real, V3};
 use wide::f32x8;
 
 /// The two triangles (A,B,C) and (A,C,D) of a quad given in perimeter order.
@@ -65,7 +64,7 @@ pub fn splat3(v: V3<f32>) -> [f32x8; 3] {
     v.map(f32x8::splat)
 }
 
-/// [`crate::real::dot`] in eight lanes, same summation order.
+/// [`lanecast::experimental::real::dot`] in eight lanes, same summation order.
 #[inline(always)]
 pub fn dot8(a: &[f32x8; 3], b: &[f32x8; 3]) -> f32x8 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]

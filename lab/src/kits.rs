@@ -1,31 +1,31 @@
-//! Brute-force drivers for the intersection methods (`--method`) and the accuracy lab (lab/
-//! crate): every ray against every primitive, one thread, one method. Their loops are separate
-//! from the renderer's (`render/mod.rs`, `kernel/packet.rs`, which have acceleration
-//! structures), so the lab measures the intersection methods alone.
+//! Brute-force drivers for the lab's intersection methods ([`crate::method::Method`]): every ray
+//! against every primitive, one thread, one method. Their loops are separate from lanecast's
+//! renderer (which has acceleration structures), so the lab measures the intersection methods
+//! alone.
 //!
 //! A [`Kit`] holds one method's constants for one scene (spheres, triangles, quads, each with
 //! its id) and the camera's ray tables; [`Kit::render_x8`] traces 4x2 pixel blocks as 8-lane
 //! packets (lanes past the image border masked, as in the main renderer) and
 //! [`Kit::render_x1`] one ray at a time in f32 with the same method. [`Oracle`] is the f64
 //! scalar oracle. The f64x4 packet form of the default methods, which takes the accelerations
-//! and every thread, is `render::wide64`'s `Kit64`.
+//! and every thread, is lanecast's `render::wide64::Kit64` (`--precision f64`).
 
-use super::Frame;
-use crate::camera::{Camera, RayTables};
-use crate::kernel::methods::mt::{MtK, mt_x1, mt_x8};
-use crate::kernel::methods::plane::{PlaneK, plane_x1, plane_x8};
-use crate::kernel::methods::sphere_naive::{NaiveK, naive_x1, naive_x8};
-use crate::kernel::methods::woop::{WoopK, WoopRay, WoopRay8, woop_ray, woop_x1, woop_x8};
-use crate::kernel::methods::{quad_split, world};
-use crate::kernel::packet::block_rays;
-use crate::kernel::polygon::{QuadK, TriangleK, polygon_x1, polygon_x8};
-use crate::kernel::sphere::{SphereK, sphere_x1, sphere_x8};
-use crate::kernel::{Hit, Hit8, LANES};
-use crate::real::V3;
-use crate::scene::{Scene, Shape};
-use crate::soa::Prepared;
-use crate::soa::trace::trace_x1;
+use crate::methods::mt::{MtK, mt_x1, mt_x8};
+use crate::methods::plane::{PlaneK, plane_x1, plane_x8};
+use crate::methods::sphere_naive::{NaiveK, naive_x1, naive_x8};
+use crate::methods::woop::{WoopK, WoopRay, WoopRay8, woop_ray, woop_x1, woop_x8};
+use crate::methods::{quad_split, world};
 use glam::DVec3;
+use lanecast::experimental::camera::RayTables;
+use lanecast::experimental::kernel::packet::block_rays;
+use lanecast::experimental::kernel::polygon::{QuadK, TriangleK, polygon_x1, polygon_x8};
+use lanecast::experimental::kernel::sphere::{SphereK, sphere_x1, sphere_x8};
+use lanecast::experimental::kernel::{Hit, Hit8, LANES};
+use lanecast::experimental::real::V3;
+use lanecast::experimental::soa::Prepared;
+use lanecast::experimental::soa::trace::trace_x1;
+use lanecast::scene::{Scene, Shape};
+use lanecast::{Camera, Frame};
 use std::marker::PhantomData;
 use wide::f32x8;
 

@@ -22,8 +22,8 @@
 //! exceeds the triangle). Proven by `tests/stability.rs` and the lab's tables.
 
 use super::{cross, cross8, dot8, splat3, sub};
-use crate::real::{Real, V3, dot, v3};
 use glam::DVec3;
+use lanecast::experimental::real::{Real, V3, dot, v3};
 use wide::f32x8;
 
 /// One triangle's constants, relative to the eye.

@@ -1,21 +1,18 @@
-//! Intersection methods other than the default, selectable with `--method` and `--precision`:
-//! each names a pair of kernels (`kernel::methods`) and [`Method::prepare`] builds its driver.
-//! The f64x4 method (the default kernels in f64 lanes) takes every acceleration and every
-//! thread (`render::wide64`); the others run a brute-force driver ([`kits`](super::kits)):
-//! every ray against every primitive, on the calling thread. Those exist to be compared (by
-//! `lanecast compare` and the accuracy lab), not to be fast; the default method runs in the
-//! renderer proper ([`super::Setup`]).
+//! The lab's intersection methods, each a point on the chart: a triangle/quad method and a
+//! sphere method ([`crate::methods`], lanecast's own kernels) in a precision, and
+//! [`Method::prepare`] builds its driver. lanecast's precisions (`f64x4`: `--precision f64`,
+//! `auto`: `--precision auto`) render through lanecast's own renderer, with its acceleration
+//! and threads; the others run a brute-force driver ([`kits`](crate::kits)): every ray against
+//! every primitive, on the calling thread. Those exist to be compared (by this lab's table and
+//! chart, and `lab-render`), not to be fast.
 
-use super::Frame;
-use super::Renderer;
-use super::kits::{
+use crate::kits::{
     EPlane, EPlaneWorld, Kit, Mt, Naive, Oracle, Plane, PolyFamily, SphereFamily, Stable,
     StableWorld, Watertight,
 };
-use super::wide64::Kit64;
-use crate::accel::Accel;
-use crate::camera::Camera;
-use crate::scene::Scene;
+use lanecast::experimental::render::wide64::Kit64;
+use lanecast::scene::Scene;
+use lanecast::{Accel, Camera, Frame, Options, Precision, Renderer};
 
 /// One method as a point on the chart: a triangle/quad method, a sphere method, a precision.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -35,8 +32,8 @@ pub enum Method {
     /// The default methods in f64x4 packets.
     F64x4,
     /// The default methods in f32x8 packets, with each hit whose f32 distance cannot be trusted
-    /// to `redecide::TOLERANCE` decided again in f64 (`--precision auto`, the command line's
-    /// default; `render::redecide`).
+    /// to 1e-5 decided again in f64 (`--precision auto`, lanecast's default;
+    /// `lanecast::experimental::render::redecide`).
     Auto,
 }
 
@@ -53,7 +50,7 @@ impl Method {
         Method::Auto,
     ];
 
-    /// The method's `--method` name (also its label in reports).
+    /// The method's `--method` name (`lab-render`, the lab bench; also its label in reports).
     pub fn name(self) -> &'static str {
         match self {
             Method::Default => "eplane+stable",
@@ -94,8 +91,8 @@ impl Method {
     }
 
     /// Whether the method runs in a brute-force driver ([`Method::prepare`]): every ray
-    /// against every primitive, no acceleration, on the calling thread. The default method
-    /// (the renderer proper) and the f64x4 method take `--accel` and every thread of the pool.
+    /// against every primitive, no acceleration, on the calling thread. lanecast's precisions
+    /// (`f64x4`, `auto`) take an acceleration and every thread of the pool.
     pub fn is_brute_force(self) -> bool {
         !matches!(self, Method::Default | Method::F64x4 | Method::Auto)
     }
@@ -137,7 +134,14 @@ impl Method {
             Method::Naive => Box::new(Kit::<Naive, EPlane>::new(scene, camera)),
             Method::WorldF32 => Box::new(Kit::<StableWorld, EPlaneWorld>::new(scene, camera)),
             Method::F64x4 => Box::new(Kit64::with_accel(scene, camera, accel)),
-            Method::Auto => Box::new(Renderer::auto(scene, camera, accel)),
+            Method::Auto => {
+                let options = Options {
+                    precision: Precision::Auto,
+                    accel,
+                    ..Options::default()
+                };
+                Box::new(Renderer::new(scene, camera, &options).expect("auto takes any accel"))
+            }
         }
     }
 }
@@ -175,7 +179,7 @@ impl MethodRender for Renderer<'_> {
     }
 
     fn is_parallel(&self) -> bool {
-        Renderer::is_parallel(self)
+        true
     }
 
     fn render_marking(&self) -> (Frame<f64>, Vec<usize>) {

@@ -17,9 +17,6 @@ use crate::kernel::polygon::{PolyK, polygon_lanes};
 use crate::kernel::sphere::{SphereK, sphere_lanes};
 use wide::f64x4;
 
-/// Lanes per f64 packet.
-pub const LANES_F64: usize = 4;
-
 /// [`crate::kernel::polygon::polygon_x8`] in four f64 lanes: the one generic form.
 #[inline(always)]
 pub fn polygon_x4d<const N: usize>(k: &PolyK<f64, N>, d: &[f64x4; 3]) -> Option<(f64x4, f64x4)> {

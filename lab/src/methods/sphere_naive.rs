@@ -18,8 +18,8 @@
 //! `tests/stability.rs` (`naive_loses_the_far_sphere_in_f32`).
 
 use super::{dot8, splat3};
-use crate::real::{Real, V3, dot, v3};
 use glam::DVec3;
+use lanecast::experimental::real::{Real, V3, dot, v3};
 use wide::f32x8;
 
 /// One sphere: centre relative to the eye and radius^2.

@@ -35,8 +35,8 @@
 //! by `tests/stability.rs` (`watertight_leaves_no_holes`, `x8_equals_x1_*`).
 
 use super::abs;
-use crate::real::{Real, V3, v3};
 use glam::DVec3;
+use lanecast::experimental::real::{Real, V3, v3};
 use wide::f32x8;
 
 /// One triangle's vertices relative to the eye.

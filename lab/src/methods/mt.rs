@@ -26,8 +26,8 @@
 //! `x8_equals_x1_*`).
 
 use super::{cross, cross8, dot8, splat3, sub};
-use crate::real::{Real, V3, dot, v3};
 use glam::DVec3;
+use lanecast::experimental::real::{Real, V3, dot, v3};
 use wide::f32x8;
 
 /// One triangle's constants, relative to the eye.

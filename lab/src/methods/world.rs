@@ -13,10 +13,10 @@
 //! `scenes/stress/translated.sc`, `ground.sc`. Measured by the lab (`world-f32` rows).
 
 use super::{cross, sub};
-use crate::kernel::polygon::PolyK;
-use crate::kernel::sphere::SphereK;
-use crate::real::{V3, dot, v3};
 use glam::DVec3;
+use lanecast::experimental::kernel::polygon::PolyK;
+use lanecast::experimental::kernel::sphere::SphereK;
+use lanecast::experimental::real::{V3, dot, v3};
 
 /// Sphere constants computed in f32 from f32 world coordinates.
 pub fn sphere(center: DVec3, radius: f64, eye: DVec3) -> SphereK<f32> {
