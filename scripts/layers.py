@@ -34,7 +34,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 # line may use each other's items (but not in a cycle). `lib` is the crate root's own file.
 LAYERS = {
     "lanecast": [
-        "error limits real par words test_rng basis",
+        "error limits real par words test_rng basis precision",
         "scene",
         "camera",
         "frame",
@@ -52,8 +52,10 @@ LAYERS = {
         "lib main",
     ],
     "lanecast-lab": [
-        "measure",
-        "bvh_spike",
+        "scenes methods bvh_spike",
+        "kits",
+        "method",
+        "measure render",
         "report",
         "lib",
     ],

@@ -20,10 +20,10 @@
 //! percentile, max. Throughput: primary rays per second on one thread, best of repeated
 //! renders (at least 2, about 0.3 s in all), setup excluded.
 
-use super::LabFrame;
-use super::LabScene;
 use crate::kits::Oracle;
 use crate::method::{Method, MethodRender};
+use crate::scenes::LabFrame;
+use crate::scenes::LabScene;
 use glam::DVec3;
 use lanecast::compare::{EDGE_BAND, TIE_REL, hit_with_slack};
 use lanecast::experimental::real::V3;

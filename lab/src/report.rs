@@ -2,9 +2,9 @@
 //! `speed-vs-accuracy.svg`/`.png` (plotters: SVG backend, and the bitmap backend drawing into
 //! a buffer that the crate's own `image` dependency encodes as PNG), and `err-*.png` images.
 
-use super::LabScene;
 use super::measure::{FALSE_HIT, HOLE, Row, SceneResult};
 use crate::Method;
+use crate::scenes::LabScene;
 use lanecast::compare::{class_colour, marked_render};
 use lanecast::output;
 use lanecast::{Error, Result};
@@ -413,7 +413,7 @@ pub fn chart(out: &Path, sums: &[Summary]) -> Result<()> {
 
 /// The error image: the oracle's render at a third of its brightness, mismatches marked: tie
 /// yellow, edge band cyan, unexcused red, hole magenta, false hit white.
-pub fn error_image(oracle: &super::LabFrame, row: &Row) -> Vec<u8> {
+pub fn error_image(oracle: &crate::scenes::LabFrame, row: &Row) -> Vec<u8> {
     marked_render(oracle, |i| {
         let c = row.class[i];
         if c & FALSE_HIT != 0 {
