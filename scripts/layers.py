@@ -61,10 +61,9 @@ LAYERS = {
     ],
     "lanecast-python": [
         "errors threads",
-        "args arrays camera",
-        "scene",
+        "args arrays camera pickle",
         "render",
-        "pickle",
+        "scene",
         "lib",
     ],
     "lanecast-web": [

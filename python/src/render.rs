@@ -3,18 +3,26 @@
 
 use crate::args;
 use crate::errors::{py_err, scene_error_class, value_error};
-use crate::scene::Prepared;
 use crate::threads::run;
 use lanecast::Frame;
 use lanecast::scene::RangeClusters;
 use lanecast::world::{self, World};
-use lanecast::{ColorMode, Precision, Variation};
+use lanecast::{ColorMode, Precision, Scene, Variation, Views};
 use numpy::ndarray::{ArrayD, IxDyn};
 use numpy::{IntoPyArray, PyReadonlyArray1};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 use std::sync::Arc;
+
+// A scene and its prepared views for one precision, in one value: `Views` borrows the scene.
+self_cell::self_cell!(
+    pub(crate) struct Prepared {
+        owner: Arc<Scene>,
+        #[not_covariant]
+        dependent: Views,
+    }
+);
 
 /// A render's buffers: `ids` and `depth`, (H, W) for one view or (V, H, W) for a batch, and
 /// `zdepth` and `normals` when the render asked for them.

@@ -6,7 +6,7 @@ use crate::arrays::{float_rows, index_rows};
 use crate::camera::{PyCamera, camera_arg, cameras_arg};
 use crate::errors::{py_err, value_error};
 use crate::pickle::{self, SceneState};
-use crate::render::{self, Engine, Extras, Render};
+use crate::render::{self, Engine, Extras, Prepared, Render};
 use crate::threads::run;
 use lanecast::scene::RangeClusters;
 use lanecast::world::World;
@@ -28,15 +28,6 @@ fn precision_index(name: &str) -> PyResult<usize> {
             ))
         })
 }
-
-// A scene and its prepared views for one precision, in one value: `Views` borrows the scene.
-self_cell::self_cell!(
-    pub(crate) struct Prepared {
-        owner: Arc<Scene>,
-        #[not_covariant]
-        dependent: Views,
-    }
-);
 
 /// A loaded, validated scene, and what is prepared from it once: its per-eye views (one per
 /// precision) and, for `accel="world"`, the world engine's prepared scene with the range
