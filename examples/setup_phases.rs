@@ -1,5 +1,5 @@
 //! Where a view's time goes in a many-view run: for each camera of an orbit about the scene's
-//! camera (`scene::views::orbit`, as `--orbit N`), the best of `REPEAT` timings of each stage
+//! camera (`scene::cameras::orbit`, as `--orbit N`), the best of `REPEAT` timings of each stage
 //! of the per-view work, run alone, in the current rayon pool (`RAYON_NUM_THREADS`):
 //!
 //! - `check`: the f32 range check from the view's eye, primitive by primitive
@@ -20,7 +20,7 @@
 use lanecast::experimental::scene::range::f32_range_from;
 use lanecast::experimental::scene::range_clusters::RangeClusters;
 use lanecast::experimental::soa::Packed;
-use lanecast::scene::views::orbit;
+use lanecast::scene::cameras::orbit;
 use lanecast::{Camera, Options, Precision, Renderer, load_scene};
 use std::time::Instant;
 

@@ -2,7 +2,7 @@
 //! (or every view with CHECK=all) held to the f64 oracle (`compare::compare_frame`).
 //!
 //!     RAYON_NUM_THREADS=2 cargo run --release --example world_views -- SCENE WxH VIEWS [auto|f32|f64]
-use lanecast::scene::views::orbit;
+use lanecast::scene::cameras::orbit;
 use lanecast::world::{Precision, Scratch, World};
 use lanecast::{Camera, load_scene};
 use std::sync::Arc;

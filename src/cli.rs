@@ -14,7 +14,7 @@
 mod args;
 mod camera;
 mod spelling;
-mod views;
+mod view_flags;
 
 use crate::error::{Error, Result};
 use crate::output::ImageFormat;
@@ -27,7 +27,7 @@ use clap::parser::ValueSource;
 use clap::{ArgMatches, CommandFactory, FromArgMatches};
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
-pub use views::ViewSource;
+pub use view_flags::ViewSource;
 
 /// The original's single-dash long options and their GNU long forms.
 pub const SINGLE_DASH: [(&str, &str); 5] = [
@@ -105,7 +105,7 @@ pub struct RenderSettings {
     pub repeat: u32,
     pub stats: Option<PathBuf>,
     /// Many views (`--views`, `--orbit`); `None` for the scene's one camera.
-    pub views: Option<views::ViewSource>,
+    pub views: Option<view_flags::ViewSource>,
     /// `--skip-existing`.
     pub skip_existing: bool,
     /// `--save-views FILE` (with `--orbit`).
@@ -206,10 +206,10 @@ fn parse_raw(raw: &[OsString]) -> Result<Command> {
             let typed = Typed { matches: &matches };
             let r = cli.render;
             let view = view(r.view, &typed, r.kernel)?;
-            let source = views::source(r.views, r.orbit);
+            let source = view_flags::source(r.views, r.orbit);
             let output = match r.output {
                 Some(o) => o,
-                None if source.is_some() => views::default_output(&view.input)?,
+                None if source.is_some() => view_flags::default_output(&view.input)?,
                 None if view.input == Path::new(crate::scene::STDIN) => {
                     return Err(Error::usage(
                         "-i -: a scene from standard input has no file name to put the image \
@@ -239,7 +239,7 @@ fn parse_raw(raw: &[OsString]) -> Result<Command> {
                 save_views: r.save_views,
             };
             check_render(&settings, &typed)?;
-            views::check(&settings, &typed)?;
+            view_flags::check(&settings, &typed)?;
             Ok(Command::Render(settings))
         }
     }

@@ -48,7 +48,7 @@
 //! - Rendering: [`Renderer::new`] with [`Options`] ([`Precision`], [`Accel`], [`Kernel`])
 //!   prepares a scene for a camera; [`Renderer::render`] gives a [`Frame`].
 //! - Many views of one scene: [`Views::new`] once, then [`Views::render`] for each camera
-//!   ([`Camera::look_at`] makes one from a [`CameraSpec`]); [`scene::views`] reads views files
+//!   ([`Camera::look_at`] makes one from a [`CameraSpec`]); [`scene::cameras`] reads views files
 //!   and makes orbits. Each view is bit-identical to a [`Renderer`] of its own.
 //! - Shading: [`shade`] (or [`Frame::rgb`]) by [`ColorMode`] and [`Variation`]; what the
 //!   hits' surfaces are: [`Frame::z_depth`] and [`Frame::normals`].

@@ -12,7 +12,7 @@ mod common;
 
 use common::{Rng, bounds, icosphere};
 use glam::DVec3;
-use lanecast::scene::views::orbit;
+use lanecast::scene::cameras::orbit;
 use lanecast::scene::{CameraSpec, Scene, Shape, Shapes};
 use lanecast::{Camera, Options, Precision, Renderer, Views, load_scene};
 use std::path::Path;

@@ -12,7 +12,7 @@
 
 use lanecast::Camera;
 use lanecast::compare::compare_frame;
-use lanecast::scene::views::load_views;
+use lanecast::scene::cameras::load_views;
 use lanecast_lab::bvh_spike::{Bvh, Variant, render};
 use std::path::PathBuf;
 use std::time::Instant;

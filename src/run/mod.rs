@@ -4,7 +4,7 @@
 
 mod compare;
 mod render;
-mod views;
+mod many_views;
 
 use crate::camera::Camera;
 use crate::cli::{Command, ViewSettings};
@@ -22,7 +22,7 @@ pub(crate) fn command(cmd: Command) -> Result<()> {
         }
         // Every phase (parse, setup, render, shade) runs on the pool `--threads` asks for.
         Command::Render(s) => pool(s.view.threads)?.install(|| match &s.views {
-            Some(source) => views::views_command(&s, source),
+            Some(source) => many_views::views_command(&s, source),
             None => render::render_command(&s),
         }),
         Command::Compare(s) => pool(s.view.threads)?.install(|| compare::compare_command(&s)),

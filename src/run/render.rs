@@ -138,7 +138,7 @@ pub(super) fn encode_to_stdout(
     }
 }
 
-/// Runs the render command for one view (many views: `views::views_command`). Every output is
+/// Runs the render command for one view (many views: `many_views::views_command`). Every output is
 /// checked and its temporary file created before the scene is read; the outputs are renamed
 /// into place together at the end (`OutputSet`).
 pub(crate) fn render_command(s: &RenderSettings) -> Result<()> {

@@ -22,7 +22,7 @@ mod scene_chunk;
 mod shapes;
 mod statement;
 pub(crate) mod validate;
-pub mod views;
+pub mod cameras;
 
 pub use arrays::scene_from_arrays;
 use glam::DVec3;

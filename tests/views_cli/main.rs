@@ -8,7 +8,7 @@ mod common;
 
 use common::*;
 use glam::DVec3;
-use lanecast::scene::views::orbit;
+use lanecast::scene::cameras::orbit;
 use std::fs;
 use std::path::Path;
 

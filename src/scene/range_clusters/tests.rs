@@ -189,7 +189,7 @@ fn scans_from_an_orbit_and_from_their_surfaces() {
         let scene = crate::scene::load_scene(&root.join(name)).unwrap();
         let clusters = RangeClusters::new(&scene);
         let (mut settled, mut total) = (0, 0);
-        for spec in crate::scene::views::orbit(&scene.camera, 24) {
+        for spec in crate::scene::cameras::orbit(&scene.camera, 24) {
             let (s, n) = clusters.settled(spec.eye);
             (settled, total) = (settled + s, total + n);
             let plain = range::f32_range_from(&scene, spec.eye).map_err(|e| e.to_string());

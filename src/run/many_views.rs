@@ -16,7 +16,7 @@ use crate::error::{Error, Result};
 use crate::output::{self, Expected, OutputKind, OutputSet, Pattern};
 use crate::progress;
 use crate::render::{Options, Views};
-use crate::scene::views::{ViewLine, load_views, orbit};
+use crate::scene::cameras::{ViewLine, load_views, orbit};
 use crate::scene::{CameraSpec, Lens, Scene, load_scene_meshes};
 use crate::stats::{Stats, ViewRecord, ViewTime, ViewTimes, secs};
 use std::collections::HashMap;
@@ -256,7 +256,7 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
              again",
             s.view.width, s.view.height
         );
-        let text = crate::scene::views::write_views(&specs, &header);
+        let text = crate::scene::cameras::write_views(&specs, &header);
         let mut set = OutputSet::create(&[("--save-views", p, OutputKind::Text)], &stats_reads)?;
         set.write_bytes("--save-views", text.as_bytes())?;
         set.commit()?;
