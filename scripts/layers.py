@@ -15,7 +15,8 @@ out: a test may read any layer.
 
 What it checks, for each crate:
 - the modules' layers: a file may use items of its own top-level module or of a module in a
-  lower layer (the table `LAYERS` below); a use of a higher layer is an error;
+  lower layer (the tables of docs/architecture.md, "Layers"); a use of a higher layer is an
+  error;
 - cycles: the strongly connected components of the graph of files (two files or more that
   reach each other), and of the graph of top-level modules. Both counts must be 0.
 
@@ -30,49 +31,27 @@ import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
-# Each crate's top-level modules, lowest layer first. One line is one layer; modules on one
-# line may use each other's items (but not in a cycle). `lib` is the crate root's own file.
-LAYERS = {
-    "lanecast": [
-        "error limits real par words test_rng basis precision",
-        "scene",
-        "camera",
-        "frame",
-        "kernel",
-        "soa",
-        "accel surface",
-        "world",
-        "render",
-        "shade output",
-        "compare",
-        "progress stats",
-        "cli",
-        "run",
-        "experimental",
-        "lib main",
-    ],
-    "lanecast-lab": [
-        "scenes methods bvh_spike",
-        "kits",
-        "method",
-        "measure render",
-        "report",
-        "lib",
-    ],
-    "lanecast-python": [
-        "errors threads",
-        "args arrays camera pickle",
-        "render",
-        "scene",
-        "lib",
-    ],
-    "lanecast-web": [
-        "engine report",
-        "state",
-        "abi",
-        "lib",
-    ],
-}
+DOC = os.path.join(ROOT, "docs", "architecture.md")
+
+
+def read_layers(path=DOC):
+    """Each crate's top-level modules, lowest layer first, from the ```layers CRATE blocks of
+    docs/architecture.md ("Layers"), the one copy of the order: one line is one layer (text
+    after `#` describes it); modules on one line may use each other's items (not in a cycle)."""
+    layers, crate = {}, None
+    for line in open(path, encoding="utf-8"):
+        line = line.rstrip("\n")
+        if line.startswith("```layers "):
+            crate = line.split()[1]
+            layers[crate] = []
+        elif line.startswith("```"):
+            crate = None
+        elif crate and line.split("#")[0].strip():
+            layers[crate].append(line.split("#")[0].strip())
+    if not layers:
+        sys.exit(f"{path}: no ```layers blocks")
+    return layers
+
 
 CRATES = {
     "lanecast": ("src", ["lib.rs", "main.rs"]),
@@ -375,13 +354,13 @@ def check(name, show_edges, src=None, layers=None):
     src_default, roots = CRATES.get(name, ("src", ["lib.rs"]))
     src = src or src_default
     crate = Crate(name, src, roots)
-    rank = {m: i for i, line in enumerate(layers or LAYERS[name]) for m in line.split()}
+    rank = {m: i for i, line in enumerate(layers or read_layers()[name]) for m in line.split()}
     edges = crate.edges()
     errors = []
     tops = {rel: crate.top(rel) for rel in crate.texts}
     for rel, top in sorted(tops.items()):
         if top not in rank and rel not in crate.tests:
-            errors.append(f"{src}/{rel}: module `{top}` has no layer in scripts/layers.py")
+            errors.append(f"{src}/{rel}: module `{top}` has no layer in docs/architecture.md")
     against = sorted(
         (a, b) for a, b in edges
         if tops[a] != tops[b] and rank.get(tops[b], -1) > rank.get(tops[a], -1)
