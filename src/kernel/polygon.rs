@@ -185,7 +185,7 @@ impl QuadK<f64> {
 }
 
 /// The triangle family (`triangle` lines and mesh faces): [`TriangleK`] and the edge-plane
-/// kernel [`polygon_x1`], [`polygon_lanes`].
+/// kernel [`polygon_x1`], `polygon_lanes`.
 #[derive(Debug, Clone, Copy)]
 pub struct Triangle;
 

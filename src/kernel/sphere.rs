@@ -76,7 +76,7 @@ impl SphereK<f64> {
     }
 }
 
-/// The sphere family (`sphere CX CY CZ RADIUS`): [`SphereK`], [`sphere_x1`], [`sphere_lanes`].
+/// The sphere family (`sphere CX CY CZ RADIUS`): [`SphereK`], [`sphere_x1`], `sphere_lanes`.
 #[derive(Debug, Clone, Copy)]
 pub struct Sphere;
 
