@@ -11,8 +11,8 @@ use crate::accel::bvh::trace_bvh_x4d;
 use crate::camera::{Camera, RayTables};
 use crate::kernel::wide64::{Hit4d, dir_x4d};
 use crate::scene::Scene;
-use crate::soa::trace::ranges_x4d;
-use crate::soa::{Prepared, Records};
+use crate::soa::Prepared;
+use crate::soa::trace::trace_x4d;
 use wide::f64x4;
 
 /// Pixels per f64x4 row of a block.
@@ -64,10 +64,7 @@ impl Kit64 {
         match &self.structure {
             Structure::Tiles(tiles) => tiles.trace_x4d(p, [x0, x0 + BW - 1, y], d, hit),
             Structure::Bvh(bvh) => trace_bvh_x4d(p, bvh, d, hit),
-            Structure::None => {
-                let [s, t, q] = p.counts();
-                ranges_x4d(p, [0..s, 0..t, 0..q], d, hit)
-            }
+            Structure::None => trace_x4d(p, d, hit),
         }
     }
 

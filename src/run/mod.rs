@@ -3,8 +3,8 @@
 //! `compare` subcommand; both go through the library API (`lanecast::Renderer`, `compare`).
 
 mod compare;
-mod render;
 mod many_views;
+mod render;
 
 use crate::camera::Camera;
 use crate::cli::{Command, ViewSettings};

@@ -6,6 +6,7 @@
 //! the f32 range check of a scene seen from an eye.
 
 mod arrays;
+pub mod cameras;
 #[cfg(test)]
 mod chunk_tests;
 mod chunks;
@@ -22,7 +23,6 @@ mod scene_chunk;
 mod shapes;
 mod statement;
 pub(crate) mod validate;
-pub mod cameras;
 
 pub use arrays::scene_from_arrays;
 use glam::DVec3;
