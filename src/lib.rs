@@ -86,13 +86,11 @@
 //!
 //! # Inside
 //!
-//! Modules, lowest layer first (lower layers never import higher ones): `scene` (parse,
-//! validate, meshes) -> `camera`, `soa` -> `kernel` -> `accel` -> `render` (and `frame`) ->
-//! `shade`, `output` -> `compare` -> the command line (`cli`, `run`, `progress`, `stats`:
-//! feature `cli`). `error`, `limits`, `precision`, `real` and `par` (rayon, or its
-//! sequential stand-in) are shared by all. Only [`scene`], [`output`], [`limits`],
-//! [`compare`] and [`world`] are public as modules; [`experimental`] names a few items of the
-//! others.
+//! The modules are layered, the scene lowest and the command line (`cli`, `run`, `progress`,
+//! `stats`: feature `cli`) highest; lower layers never import higher ones. The order is the
+//! table in docs/architecture.md ("Layers"), which `scripts/layers.py` checks in CI. Only
+//! [`scene`], [`output`], [`limits`], [`compare`] and [`world`] are public as modules;
+//! [`experimental`] names a few items of the others.
 
 #![warn(missing_docs)]
 
