@@ -11,14 +11,12 @@
 
 use crate::accel::Accel;
 use crate::camera::Camera;
-use crate::kernel::edge_eps;
-use crate::kernel::polygon::{PolyK, QuadK, TriangleK, polygon_x1_within};
-use crate::kernel::sphere::{SphereK, sphere_x1};
 use crate::precision::Precision;
 use crate::real::V3;
 use crate::render::{Frame, PacketScene, prepare_f64, render_packet, render_scalar_counting};
 use crate::scene::{Scene, Shape};
 use crate::shade::{ColorMode, Variation, shade};
+use crate::soa::{Stored, Visit, visit};
 use glam::DVec3;
 
 /// Two hits closer than this relative distance are a genuine tie. The packet kernel's distances
@@ -65,22 +63,16 @@ impl Report {
 }
 
 /// f64 distance to `shape` along `d` from `eye`, with its boundary moved outward by `slack`
-/// radians (inward when negative).
+/// radians (inward when negative): its family's
+/// [`Family::hit_with_slack`](crate::experimental::kernel::Family::hit_with_slack).
 pub fn hit_with_slack(shape: &Shape, eye: DVec3, d: V3<f64>, slack: f64) -> Option<f64> {
-    match shape {
-        Shape::Sphere { center, radius } => {
-            let r = radius + slack * (*center - eye).length();
-            (r > 0.0)
-                .then(|| sphere_x1(&SphereK::new(*center, r, eye), d))
-                .flatten()
+    struct Slack(DVec3, V3<f64>, f64);
+    impl Visit<Option<f64>> for Slack {
+        fn visit<F: Stored>(self, g: F::Geometry) -> Option<f64> {
+            F::hit_with_slack(&g, self.0, self.1, self.2)
         }
-        Shape::Triangle(v) => poly(TriangleK::triangle(v, eye), d, slack),
-        Shape::Quad(v) => poly(QuadK::quad(v, eye), d, slack),
     }
-}
-
-fn poly<const N: usize>(k: Option<PolyK<f64, N>>, d: V3<f64>, slack: f64) -> Option<f64> {
-    polygon_x1_within(&k?, d, edge_eps::<f64>() + slack)
+    visit(*shape, Slack(eye, d, slack))
 }
 
 /// Classifies one mismatch: 1 tie, 2 edge, 3 unexcused.

@@ -41,6 +41,16 @@ pub trait Family: 'static {
     /// caller keeps those with 0 < t).
     fn hit_lanes<L: Lanes>(k: &Self::K<L::Scalar>, d: &[L; 3]) -> Option<(L, L)>;
 
+    /// [`Family::hit_x1`] in f64 with the primitive's boundary moved outward by `slack`
+    /// radians as seen from `eye` (inward when negative): how `compare` tells a ray that passes
+    /// within a band of an edge or silhouette from a clear mismatch.
+    fn hit_with_slack(g: &Self::Geometry, eye: DVec3, d: V3<f64>, slack: f64) -> Option<f64>;
+
+    /// The plane of a flat primitive seen from `eye`, as its f64 constants hold it (unit normal
+    /// pointing away from the eye, distance from the eye), bit for bit; `None` for a curved
+    /// one. `--precision auto` measures a polygon's f32 hit against its plane alone.
+    fn plane(g: &Self::Geometry, eye: DVec3) -> Option<(V3<f64>, f64)>;
+
     /// The unit f64 normal facing the eye at the hit `point` of `g` seen from `eye`, and
     /// whether it is the same for every hit of that primitive (a flat one).
     fn normal(g: &Self::Geometry, eye: DVec3, point: DVec3) -> (DVec3, bool);

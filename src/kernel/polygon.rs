@@ -222,6 +222,13 @@ impl Family for Triangle {
     fn hit_lanes<L: Lanes>(k: &TriangleK<L::Scalar>, d: &[L; 3]) -> Option<(L, L)> {
         polygon_lanes(k, d)
     }
+    /// The edge tolerance widened by `slack`.
+    fn hit_with_slack(v: &[DVec3; 3], eye: DVec3, d: V3<f64>, slack: f64) -> Option<f64> {
+        polygon_x1_within(&TriangleK::triangle(v, eye)?, d, edge_eps::<f64>() + slack)
+    }
+    fn plane(v: &[DVec3; 3], eye: DVec3) -> Option<(V3<f64>, f64)> {
+        Some(TriangleK::triangle_plane(v, eye))
+    }
     /// `(B - A) x (C - A)`, turned to the eye.
     fn normal(&[a, b, c]: &[DVec3; 3], eye: DVec3, _: DVec3) -> (DVec3, bool) {
         (facing((b - a).cross(c - a), a - eye), true)
@@ -256,6 +263,13 @@ impl Family for Quad {
     #[inline(always)]
     fn hit_lanes<L: Lanes>(k: &QuadK<L::Scalar>, d: &[L; 3]) -> Option<(L, L)> {
         polygon_lanes(k, d)
+    }
+    /// The edge tolerance widened by `slack`.
+    fn hit_with_slack(v: &[DVec3; 4], eye: DVec3, d: V3<f64>, slack: f64) -> Option<f64> {
+        polygon_x1_within(&QuadK::quad(v, eye)?, d, edge_eps::<f64>() + slack)
+    }
+    fn plane(v: &[DVec3; 4], eye: DVec3) -> Option<(V3<f64>, f64)> {
+        Some(QuadK::quad_plane(v, eye))
     }
     /// The diagonals' cross product `(C - A) x (D - B)`, turned to the eye.
     fn normal(&[a, b, c, d]: &[DVec3; 4], eye: DVec3, _: DVec3) -> (DVec3, bool) {

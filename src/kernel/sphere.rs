@@ -109,6 +109,21 @@ impl Family for Sphere {
     fn hit_lanes<L: Lanes>(k: &SphereK<L::Scalar>, d: &[L; 3]) -> Option<(L, L)> {
         sphere_lanes(k, d)
     }
+    /// The radius grown by `slack` times the centre's distance.
+    fn hit_with_slack(
+        &(center, radius): &(DVec3, f64),
+        eye: DVec3,
+        d: V3<f64>,
+        slack: f64,
+    ) -> Option<f64> {
+        let r = radius + slack * (center - eye).length();
+        (r > 0.0)
+            .then(|| sphere_x1(&SphereK::new(center, r, eye), d))
+            .flatten()
+    }
+    fn plane(_: &(DVec3, f64), _: DVec3) -> Option<(V3<f64>, f64)> {
+        None
+    }
     /// Outward from the centre, or inward when the eye is inside (it sees the inner side).
     fn normal(&(center, radius): &(DVec3, f64), eye: DVec3, point: DVec3) -> (DVec3, bool) {
         let out = (point - center).normalize_or_zero();

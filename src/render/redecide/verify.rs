@@ -4,10 +4,12 @@
 //! [`BUDGET`] of its distance.
 
 use super::{BUDGET, ORACLE_SLOTS, Redecide, Walk};
-use crate::kernel::polygon::{QuadK, TriangleK};
 use crate::kernel::sphere::{SphereK, sphere_disc};
 use crate::kernel::wide64::dir_x4d;
+use crate::real::V3;
 use crate::scene::Shape;
+use crate::soa::{Stored, Visit, visit};
+use glam::DVec3;
 use std::cell::Ref;
 use wide::f64x4;
 
@@ -265,11 +267,13 @@ impl Redecide<'_> {
     /// The measurement's constants of polygon `shape` (`None` for a sphere): the oracle's
     /// plane alone, since only a polygon the oracle accepts has f32 constants to hit.
     pub(super) fn plane(&self, shape: Shape) -> Option<Plane> {
-        let (nrm, p) = match shape {
-            Shape::Sphere { .. } => return None,
-            Shape::Triangle(v) => TriangleK::triangle_plane(&v, self.camera_eye),
-            Shape::Quad(v) => QuadK::quad_plane(&v, self.camera_eye),
-        };
+        struct Flat(DVec3);
+        impl Visit<Option<(V3<f64>, f64)>> for Flat {
+            fn visit<F: Stored>(self, g: F::Geometry) -> Option<(V3<f64>, f64)> {
+                F::plane(&g, self.0)
+            }
+        }
+        let (nrm, p) = visit(shape, Flat(self.camera_eye))?;
         Some(Plane::new(nrm, p, &self.tables))
     }
 

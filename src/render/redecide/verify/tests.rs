@@ -1,11 +1,10 @@
 use super::*;
 use crate::camera::Camera;
-use crate::kernel::polygon::polygon_x1;
+use crate::kernel::polygon::{TriangleK, polygon_x1};
 use crate::kernel::sphere::sphere_x1;
 use crate::scene::Scene;
 use crate::scene::{CameraSpec, Shapes};
 use crate::soa::Packed;
-use glam::DVec3;
 
 /// Scene 7's far-reaching triangle (grazing far away) and a sphere far larger than its
 /// distance to the eye, seen near its horizon, through a 64x48 camera.
