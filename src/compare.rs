@@ -17,6 +17,7 @@ use crate::render::{Frame, PacketScene, prepare_f64, render_packet, render_scala
 use crate::scene::{Scene, Shape};
 use crate::shade::{ColorMode, Variation, shade};
 use crate::soa::{Stored, Visit, visit};
+use crate::words::count;
 use glam::DVec3;
 
 /// Two hits closer than this relative distance are a genuine tie. The packet kernel's distances
@@ -245,6 +246,78 @@ pub const LIST_UNEXCUSED: usize = 20;
 pub const OUTLINE_HALF: usize = 4;
 
 impl Report {
+    /// The report as `lanecast compare` prints it below its header (the scene, what was
+    /// compared), a line each: the pixels of the `width` x `height` image, the mismatches by
+    /// class (with `allowed`, the unexcused ppm the caller accepts, when given), the first
+    /// [`LIST_UNEXCUSED`] unexcused pixels, the pixels re-decided in f64 (when `redecided`),
+    /// and the depth error over same-id hits. The lab's `lab-render` prints the same lines.
+    pub fn lines(
+        &self,
+        width: u32,
+        height: u32,
+        allowed: Option<f64>,
+        redecided: bool,
+    ) -> Vec<String> {
+        let ppm = |n: usize| n as f64 * 1e6 / self.pixels.max(1) as f64;
+        let mut out = vec![
+            format!("pixels      {} ({width}x{height})", self.pixels),
+            format!(
+                "mismatches  {} ({:.1} ppm)",
+                self.mismatches,
+                ppm(self.mismatches)
+            ),
+            format!(
+                "  ties      {} (f64 distances within {TIE_REL:e} relative)",
+                self.ties
+            ),
+            format!(
+                "  edge band {} (ray within {EDGE_BAND:.2e} rad of a boundary)",
+                self.edges
+            ),
+            match allowed {
+                Some(a) => format!(
+                    "  unexcused {} ({:.1} ppm; allowed {a} ppm)",
+                    self.unexcused,
+                    self.unexcused_ppm()
+                ),
+                None => format!(
+                    "  unexcused {} ({:.1} ppm)",
+                    self.unexcused,
+                    self.unexcused_ppm()
+                ),
+            },
+        ];
+        if self.unexcused > 0 {
+            let first: Vec<String> = (self.unexcused_pixels(width))
+                .take(LIST_UNEXCUSED)
+                .map(|(x, y)| format!("({x}, {y})"))
+                .collect();
+            let shown = if self.unexcused > LIST_UNEXCUSED {
+                format!("first {LIST_UNEXCUSED}")
+            } else {
+                "all".to_string()
+            };
+            out.push(format!(
+                "  unexcused at (x, y), {shown}: {}",
+                first.join(" ")
+            ));
+        }
+        if redecided {
+            out.push(format!(
+                "re-decided  {} in f64 ({:.4}%)",
+                count(self.redecided.len(), "pixel", "pixels"),
+                self.redecided.len() as f64 * 100.0 / self.pixels.max(1) as f64
+            ));
+        }
+        out.push(format!(
+            "depth rel   max {:.3e}, p99 {:.3e} over {}",
+            self.depth_rel_max,
+            self.depth_rel_p99,
+            count(self.same_hits, "same-id hit", "same-id hits")
+        ));
+        out
+    }
+
     /// The (x, y) of the unexcused pixels in a `width`-wide image, row by row.
     pub fn unexcused_pixels(&self, width: u32) -> impl Iterator<Item = (u32, u32)> + '_ {
         let width = width as usize;

@@ -16,7 +16,7 @@
 //! (default: never).
 
 use crate::method::Method;
-use lanecast::compare::{EDGE_BAND, LIST_UNEXCUSED, TIE_REL, compare_frame, diff_picture};
+use lanecast::compare::{compare_frame, diff_picture};
 use lanecast::experimental::render::f32_depth;
 use lanecast::{Accel, Camera, ColorMode, Error, Result, Variation, load_scene};
 use std::path::PathBuf;
@@ -121,47 +121,12 @@ pub fn lab_render(a: &RenderArgs) -> Result<()> {
     let frame = f32_depth(frame);
     let (mut r, oracle) = compare_frame(&scene, &camera, &frame);
     r.redecided = redecided;
-    let ppm = |n: usize| n as f64 * 1e6 / r.pixels.max(1) as f64;
     println!("scene       {}", a.input.display());
     println!("method      {} ({})", a.method.name(), a.method.describe());
     println!("against     the f64 scalar oracle");
-    println!(
-        "pixels      {} ({}x{})",
-        r.pixels, camera.width, camera.height
-    );
-    println!(
-        "mismatches  {} ({:.1} ppm)",
-        r.mismatches,
-        ppm(r.mismatches)
-    );
-    println!(
-        "  ties      {} (f64 distances within {TIE_REL:e} relative)",
-        r.ties
-    );
-    println!(
-        "  edge band {} (ray within {EDGE_BAND:.2e} rad of a boundary)",
-        r.edges
-    );
-    println!("  unexcused {} ({:.1} ppm)", r.unexcused, r.unexcused_ppm());
-    if r.unexcused > 0 {
-        let first: Vec<String> = (r.unexcused_pixels(camera.width))
-            .take(LIST_UNEXCUSED)
-            .map(|(x, y)| format!("({x}, {y})"))
-            .collect();
-        let shown = if r.unexcused > LIST_UNEXCUSED {
-            format!("first {LIST_UNEXCUSED}")
-        } else {
-            "all".to_string()
-        };
-        println!("  unexcused at (x, y), {shown}: {}", first.join(" "));
+    for line in r.lines(camera.width, camera.height, None, a.method == Method::Auto) {
+        println!("{line}");
     }
-    if a.method == Method::Auto {
-        println!("re-decided  {} pixels in f64", r.redecided.len());
-    }
-    println!(
-        "depth rel   max {:.3e}, p99 {:.3e} over {} same-id hits",
-        r.depth_rel_max, r.depth_rel_p99, r.same_hits
-    );
     if let Some(p) = &a.diff {
         let picture = diff_picture(&r, &oracle);
         lanecast::output::write_image(p, camera.width, camera.height, &picture)?;

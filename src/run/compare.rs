@@ -3,7 +3,7 @@
 
 use super::load_view;
 use crate::cli::CompareSettings;
-use crate::compare::{EDGE_BAND, LIST_UNEXCUSED, TIE_REL, compare_precision, diff_picture};
+use crate::compare::{compare_precision, diff_picture};
 use crate::error::{Error, Result};
 use crate::output::{self, OutputKind, OutputSet};
 use crate::precision::Precision;
@@ -25,58 +25,13 @@ pub(crate) fn compare_command(s: &CompareSettings) -> Result<()> {
     let precision = s.view.precision;
     let (report, oracle) = compare_precision(&scene, &camera, precision, s.view.accel);
     let r = &report;
-    let ppm = |n: usize| n as f64 * 1e6 / r.pixels.max(1) as f64;
     println!("scene       {}", s.view.input.display());
     println!("precision   {}", precision.name());
     println!("against     the f64 scalar oracle");
-    println!(
-        "pixels      {} ({}x{})",
-        r.pixels, camera.width, camera.height
-    );
-    println!(
-        "mismatches  {} ({:.1} ppm)",
-        r.mismatches,
-        ppm(r.mismatches)
-    );
-    println!(
-        "  ties      {} (f64 distances within {TIE_REL:e} relative)",
-        r.ties
-    );
-    println!(
-        "  edge band {} (ray within {EDGE_BAND:.2e} rad of a boundary)",
-        r.edges
-    );
-    println!(
-        "  unexcused {} ({:.1} ppm; allowed {} ppm)",
-        r.unexcused,
-        r.unexcused_ppm(),
-        s.max_mismatch_ppm
-    );
-    if r.unexcused > 0 {
-        let first: Vec<String> = (r.unexcused_pixels(camera.width))
-            .take(LIST_UNEXCUSED)
-            .map(|(x, y)| format!("({x}, {y})"))
-            .collect();
-        let shown = if r.unexcused > LIST_UNEXCUSED {
-            format!("first {LIST_UNEXCUSED}")
-        } else {
-            "all".to_string()
-        };
-        println!("  unexcused at (x, y), {shown}: {}", first.join(" "));
+    let (width, height, allowed) = (camera.width, camera.height, Some(s.max_mismatch_ppm));
+    for line in r.lines(width, height, allowed, precision == Precision::Auto) {
+        println!("{line}");
     }
-    if precision == Precision::Auto {
-        println!(
-            "re-decided  {} in f64 ({:.4}%)",
-            count(r.redecided.len(), "pixel", "pixels"),
-            r.redecided.len() as f64 * 100.0 / r.pixels.max(1) as f64
-        );
-    }
-    println!(
-        "depth rel   max {:.3e}, p99 {:.3e} over {}",
-        r.depth_rel_max,
-        r.depth_rel_p99,
-        count(r.same_hits, "same-id hit", "same-id hits")
-    );
     if s.output.is_some() {
         set.write_image(
             "--output",
