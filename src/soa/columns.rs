@@ -3,7 +3,8 @@
 //! as an acceleration structure asks (`super::Order`).
 
 use super::{Columns, Group, IdSet, Order, Prepared, gather};
-use crate::kernel::polygon::{PolyK, Quad, QuadK, Triangle, TriangleK};
+use crate::kernel::Family;
+use crate::kernel::polygon::{PolyK, QuadK, TriangleK};
 use crate::kernel::sphere::{Sphere, SphereK};
 use crate::kernel::triangle_setup::triangles_x4;
 use crate::par::prelude::*;
@@ -237,24 +238,11 @@ impl Columns<Sphere> for Spheres {
     }
 }
 
-impl Columns<Triangle> for Polygons<3> {
+/// Triangles (`N` = 3) and quads (`N` = 4) alike: any family whose constants are an `N`-edge
+/// polygon's.
+impl<F: Family<K<f32> = PolyK<f32, N>>, const N: usize> Columns<F> for Polygons<N> {
     #[inline(always)]
-    fn get(&self, i: usize) -> TriangleK<f32> {
-        Polygons::get(self, i)
-    }
-    #[inline(always)]
-    fn id(&self, i: usize) -> f32 {
-        self.id[i]
-    }
-    #[inline(always)]
-    fn len(&self) -> usize {
-        Polygons::len(self)
-    }
-}
-
-impl Columns<Quad> for Polygons<4> {
-    #[inline(always)]
-    fn get(&self, i: usize) -> QuadK<f32> {
+    fn get(&self, i: usize) -> PolyK<f32, N> {
         Polygons::get(self, i)
     }
     #[inline(always)]
