@@ -174,8 +174,6 @@ impl<T: Real> Records<T> for Prepared<T> {
 /// (spheres 0, triangles 1, quads 2, as [`Order`], `counts` and the tiles number them) and
 /// where its records ([`Prepared`]) and columns ([`Packed`]) are kept.
 pub trait Stored: Family + Sized {
-    /// The family's index among the kinds.
-    const KIND: usize;
     /// Its f32 columns.
     type Columns: Columns<Self>;
     /// Its records in `p`.
@@ -217,6 +215,31 @@ macro_rules! for_each_family {
 }
 pub(crate) use for_each_family;
 
+/// The registration's families by kind at run time: `with_family!(kind, F => expr)` evaluates
+/// `expr` with `F` naming the family whose `Family::KIND` is `kind` (a kind tag read from a
+/// structure: the BVH's leaves, the tiles' entries). Kinds past the last are the last.
+#[allow(unused_macros)]
+macro_rules! with_family {
+    ($kind:expr, $f:ident => $body:expr) => {
+        match $kind {
+            0 => {
+                type $f = $crate::kernel::Sphere;
+                $body
+            }
+            1 => {
+                type $f = $crate::kernel::Triangle;
+                $body
+            }
+            _ => {
+                type $f = $crate::kernel::Quad;
+                $body
+            }
+        }
+    };
+}
+#[allow(unused_imports)]
+pub(crate) use with_family;
+
 /// Something done to one primitive whatever its family: [`visit`] calls it with the family of
 /// a scene shape.
 pub trait Visit<R> {
@@ -235,7 +258,6 @@ pub fn visit<R>(shape: Shape, v: impl Visit<R>) -> R {
 }
 
 impl Stored for Sphere {
-    const KIND: usize = 0;
     type Columns = Spheres;
     #[inline(always)]
     fn group<T: Real>(p: &Prepared<T>) -> &Group<SphereK<T>> {
@@ -252,7 +274,6 @@ impl Stored for Sphere {
 }
 
 impl Stored for Triangle {
-    const KIND: usize = 1;
     type Columns = Polygons<3>;
     #[inline(always)]
     fn group<T: Real>(p: &Prepared<T>) -> &Group<TriangleK<T>> {
@@ -269,7 +290,6 @@ impl Stored for Triangle {
 }
 
 impl Stored for Quad {
-    const KIND: usize = 2;
     type Columns = Polygons<4>;
     #[inline(always)]
     fn group<T: Real>(p: &Prepared<T>) -> &Group<QuadK<T>> {

@@ -1,6 +1,7 @@
 //! The record of one render: what ran, on what, and how long each phase took. `-time` prints
 //! it for people (stderr), `--stats FILE.json` writes it for scripts.
 
+use crate::scene::KINDS;
 use crate::words::count;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -16,8 +17,8 @@ pub struct Stats {
     pub scene: String,
     pub width: usize,
     pub height: usize,
-    /// Primitives by type: spheres, triangles, quads.
-    pub primitives: (usize, usize, usize),
+    /// Primitives by kind, in `scene::KINDS` order.
+    pub primitives: [usize; KINDS.len()],
     pub kernel: &'static str,
     /// The precision that ran, as `--precision` names it: `auto`, `f32` or `f64`.
     pub precision: &'static str,
@@ -191,17 +192,17 @@ impl Stats {
 
     /// The `-time` report.
     pub fn text(&self) -> String {
-        let (s, t, q) = self.primitives;
+        let counts: Vec<String> = (KINDS.iter().zip(self.primitives))
+            .map(|(&(one, many), n)| count(n, one, many))
+            .collect();
         let mut out = String::new();
         let _ = writeln!(
             out,
-            "lanecast: {} {}x{} ({}, {}, {})",
+            "lanecast: {} {}x{} ({})",
             self.scene,
             self.width,
             self.height,
-            count(s, "sphere", "spheres"),
-            count(t, "triangle", "triangles"),
-            count(q, "quad", "quads")
+            counts.join(", ")
         );
         let _ = writeln!(
             out,
@@ -275,7 +276,10 @@ impl Stats {
 
     /// The `--stats` record, as JSON (non-finite numbers become `null`).
     pub fn json(&self) -> String {
-        let (spheres, triangles, quads) = self.primitives;
+        let primitives: serde_json::Map<String, serde_json::Value> = (KINDS.iter())
+            .zip(self.primitives)
+            .map(|(&(_, many), n)| (many.to_string(), n.into()))
+            .collect();
         let phases: serde_json::Map<String, serde_json::Value> = self
             .phases
             .iter()
@@ -292,7 +296,7 @@ impl Stats {
             "scene": self.scene,
             "width": self.width,
             "height": self.height,
-            "primitives": {"spheres": spheres, "triangles": triangles, "quads": quads},
+            "primitives": primitives,
             "kernel": self.kernel,
             "precision": self.precision,
             "accel": self.accel,
@@ -370,7 +374,7 @@ mod tests {
             scene: "a \"q\".sc".into(),
             width: 10,
             height: 10,
-            primitives: (1, 2, 3),
+            primitives: [1, 2, 3],
             kernel: "simd",
             precision: "f32",
             accel: "bvh",

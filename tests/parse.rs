@@ -70,7 +70,7 @@ fn parses_every_statement() {
         ]
     );
     assert_eq!(s.shapes.lines().collect::<Vec<_>>(), vec![2, 3, 4]);
-    assert_eq!(s.counts(), (1, 1, 1));
+    assert_eq!(s.counts(), [1, 1, 1]);
     assert_eq!(ok(CAM).camera.fov_deg(), None);
 }
 

@@ -181,10 +181,11 @@ impl PyScene {
         }
     }
 
-    /// How many primitives of each type: (spheres, triangles, quads).
+    /// How many primitives of each kind, in `lanecast::scene::KINDS` order (spheres,
+    /// triangles, quads).
     #[getter]
-    fn counts(&self) -> (usize, usize, usize) {
-        self.scene.counts()
+    fn counts<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
+        PyTuple::new(py, self.scene.counts())
     }
 
     fn __len__(&self) -> usize {
@@ -192,10 +193,13 @@ impl PyScene {
     }
 
     fn __repr__(&self) -> String {
-        let (s, t, q) = self.scene.counts();
+        let counts = (lanecast::scene::KINDS.iter().zip(self.scene.counts()))
+            .map(|(&(_, many), n)| format!("{n} {many}"))
+            .collect::<Vec<_>>();
         format!(
-            "lanecast.Scene({:?}: {s} spheres, {t} triangles, {q} quads)",
-            self.scene.source
+            "lanecast.Scene({:?}: {})",
+            self.scene.source,
+            counts.join(", ")
         )
     }
 

@@ -20,11 +20,11 @@ use super::build::{self, Built};
 use crate::camera::Camera;
 use crate::kernel::lanes::Lanes;
 use crate::kernel::wide64::Hit4d;
-use crate::kernel::{Hit, Hit8, HitLanes};
+use crate::kernel::{Family, Hit, Hit8, HitLanes};
 use crate::real::{Real, V3, f32_down, f32_up};
 use crate::scene::Scene;
 use crate::soa::trace::{family_x8, ranges_x1, ranges_x4d};
-use crate::soa::{Packed, Prepared, Records, Stored, for_each_family};
+use crate::soa::{Packed, Prepared, Records, for_each_family};
 use wide::{f32x8, f64x4};
 
 /// One node: box, child or leaf index, and kind (bit 31: leaf; bits 0-1: split axis).

@@ -9,15 +9,19 @@
 
 use crate::kernel::lanes::Lanes;
 use crate::real::{Real, V3};
-use crate::scene::Shape;
+use crate::scene::{KINDS, Shape};
 use glam::DVec3;
 use std::fmt::Debug;
 
 /// One primitive family (see the module comment). Each kernel states its formula, precision
 /// and failure modes beside its own code; this trait only names them.
 pub trait Family: 'static {
+    /// The family's kind: its index in `scene::KINDS`, the order of every per-kind list.
+    const KIND: usize;
     /// The family's keyword in the scene format.
-    const NAME: &'static str;
+    const NAME: &'static str = KINDS[Self::KIND].0;
+    /// Its plural, as counts are printed.
+    const PLURAL: &'static str = KINDS[Self::KIND].1;
     /// What the scene holds of one primitive of the family.
     type Geometry: Copy;
     /// One primitive's eye-relative constants in precision `T`.

@@ -194,7 +194,7 @@ pub struct Triangle;
 pub struct Quad;
 
 impl Family for Triangle {
-    const NAME: &'static str = "triangle";
+    const KIND: usize = 1;
     /// Vertices A, B, C.
     type Geometry = [DVec3; 3];
     type K<T: Real> = TriangleK<T>;
@@ -236,7 +236,7 @@ impl Family for Triangle {
 }
 
 impl Family for Quad {
-    const NAME: &'static str = "quad";
+    const KIND: usize = 2;
     /// Vertices A, B, C, D in perimeter order.
     type Geometry = [DVec3; 4];
     type K<T: Real> = QuadK<T>;

@@ -81,7 +81,7 @@ impl SphereK<f64> {
 pub struct Sphere;
 
 impl Family for Sphere {
-    const NAME: &'static str = "sphere";
+    const KIND: usize = 0;
     /// Centre and radius.
     type Geometry = (DVec3, f64);
     type K<T: Real> = SphereK<T>;

@@ -60,8 +60,8 @@
 use crate::accel::bvh::{trace_bvh_x1, trace_bvh_x4d};
 use crate::accel::{Bvh, Tiles};
 use crate::camera::{Camera, RayTables};
-use crate::kernel::Sphere;
 use crate::kernel::wide64::{Hit4d, dir_x4d};
+use crate::kernel::{Family, Sphere};
 use crate::par::prelude::*;
 use crate::scene::{Scene, Shape};
 use crate::soa::trace::ranges_x4d;

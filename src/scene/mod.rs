@@ -148,18 +148,62 @@ pub struct Scene {
     pub warnings: Vec<String>,
 }
 
-impl Scene {
-    /// How many primitives of each type: (spheres, triangles, quads).
-    pub fn counts(&self) -> (usize, usize, usize) {
-        let mut n = (0, 0, 0);
-        for s in self.shapes.loose() {
-            match s {
-                Shape::Sphere { .. } => n.0 += 1,
-                Shape::Triangle(_) => n.1 += 1,
-                Shape::Quad(_) => n.2 += 1,
-            }
+/// The kinds of primitive, in the one order every per-kind list follows (the counts, the
+/// stores, the acceleration structures' kind tags): each kind's keyword in the scene format
+/// and its plural.
+pub const KINDS: [(&str, &str); 3] = [
+    ("sphere", "spheres"),
+    ("triangle", "triangles"),
+    ("quad", "quads"),
+];
+
+impl Shape {
+    /// The shape's kind: its index in [`KINDS`].
+    #[inline(always)]
+    pub fn kind(&self) -> usize {
+        match self {
+            Shape::Sphere { .. } => 0,
+            Shape::Triangle(_) => 1,
+            Shape::Quad(_) => 2,
         }
-        n.1 += self.shapes.meshes().map(|(m, _)| m.len()).sum::<usize>();
+    }
+
+    /// The shape's keyword in the scene format (`sphere`, `triangle`, `quad`).
+    pub fn keyword(&self) -> &'static str {
+        KINDS[self.kind()].0
+    }
+
+    /// The shape's box relative to `origin`, as (min, max): a sphere's `centre - origin` plus
+    /// and minus its radius, a polygon's least and greatest `vertex - origin` per axis (each
+    /// difference rounded once, so the box holds every rounded vertex).
+    pub fn bounds(&self, origin: DVec3) -> (DVec3, DVec3) {
+        let points = |v: &[DVec3]| {
+            (v.iter()).fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &p| {
+                let p = p - origin;
+                (lo.min(p), hi.max(p))
+            })
+        };
+        match self {
+            Shape::Sphere { center, radius } => {
+                let c = *center - origin;
+                (c - DVec3::splat(*radius), c + DVec3::splat(*radius))
+            }
+            Shape::Triangle(v) => points(v),
+            Shape::Quad(v) => points(v),
+        }
+    }
+}
+
+impl Scene {
+    /// How many primitives of each kind, in [`KINDS`] order.
+    pub fn counts(&self) -> [usize; KINDS.len()] {
+        let mut n = [0; KINDS.len()];
+        for s in self.shapes.loose() {
+            n[s.kind()] += 1;
+        }
+        // (a mesh's faces are triangles)
+        n[Shape::Triangle([DVec3::ZERO; 3]).kind()] +=
+            self.shapes.meshes().map(|(m, _)| m.len()).sum::<usize>();
         n
     }
 }

@@ -338,7 +338,7 @@ impl Packed {
         let batch_len = CHUNK * (4 * crate::par::current_num_threads()).max(16);
         // (the primitives left out need no room)
         let most = scene.shapes.len() - left_out.map_or(0, IdSet::len);
-        let (spheres, triangles, quads) = scene.counts();
+        let [spheres, triangles, quads] = scene.counts();
         let (spheres, triangles, quads) = (spheres.min(most), triangles.min(most), quads.min(most));
         out.spheres.clear();
         out.triangles.clear();

@@ -32,7 +32,7 @@ fn stats_record_is_json_with_the_run_in_it() {
         (v["width"].as_u64(), v["height"].as_u64()),
         (Some(64), Some(48))
     );
-    let (spheres, triangles, quads) = lanecast::load_scene(&seed_scene(1)).unwrap().counts();
+    let [spheres, triangles, quads] = lanecast::load_scene(&seed_scene(1)).unwrap().counts();
     let count = |k: &str| v["primitives"][k].as_u64().map(|n| n as usize);
     assert_eq!(
         (count("spheres"), count("triangles"), count("quads")),

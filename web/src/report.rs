@@ -41,14 +41,17 @@ pub fn scene_json(s: &Scene, bounds: [DVec3; 2]) -> String {
     let c = s.camera;
     let v = |v: DVec3| format!("[{},{},{}]", v.x, v.y, v.z);
     let fov = c.fov_deg().map_or("null".to_string(), |f| f.to_string());
-    let (spheres, triangles, quads) = s.counts();
+    let mut counts = String::new();
+    for (&(_, many), n) in lanecast::scene::KINDS.iter().zip(s.counts()) {
+        let _ = write!(counts, "\"{many}\":{n},");
+    }
     let mut warnings = String::new();
     for (k, w) in s.warnings.iter().enumerate() {
         let sep = if k > 0 { "," } else { "" };
         let _ = write!(warnings, "{sep}{}", json_string(w));
     }
     format!(
-        "{{\"source\":{},\"camera\":{{\"eye\":{},\"look\":{},\"up\":{},\"fov\":{fov}}},\"default_fov\":{},\"bounds\":[{},{}],\"primitives\":{},\"spheres\":{spheres},\"triangles\":{triangles},\"quads\":{quads},\"warnings\":[{warnings}]}}",
+        "{{\"source\":{},\"camera\":{{\"eye\":{},\"look\":{},\"up\":{},\"fov\":{fov}}},\"default_fov\":{},\"bounds\":[{},{}],\"primitives\":{},{counts}\"warnings\":[{warnings}]}}",
         json_string(&s.source.to_string_lossy()),
         v(c.eye),
         v(c.look),
