@@ -13,12 +13,11 @@ fuzz_target!(|data: &[u8]| {
     if let Ok(scene) = parse_scene(&text, Path::new("fuzz.sc")) {
         assert_eq!(scene.shapes.len(), scene.shapes.lines().count());
         for s in scene.shapes.iter() {
-            match s {
-                Shape::Sphere { center, radius } => {
-                    assert!(center.is_finite() && radius.is_finite() && radius > 0.0)
-                }
-                Shape::Triangle(v) => assert!(v.iter().all(|p| p.is_finite())),
-                Shape::Quad(v) => assert!(v.iter().all(|p| p.is_finite())),
+            let mut numbers = Vec::new();
+            s.write_numbers(&mut numbers);
+            assert!(numbers.iter().all(|x| x.is_finite()), "{s:?}");
+            if let Shape::Sphere { radius, .. } = s {
+                assert!(radius > 0.0)
             }
         }
         let _ = lanecast::experimental::scene::range::f32_range(&scene);

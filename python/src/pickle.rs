@@ -10,24 +10,11 @@ use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyList, PyTuple};
 use std::path::PathBuf;
 
-/// One loose shape's kind and numbers, for pickling: 0 sphere (cx cy cz r), 1 triangle (9),
-/// 2 quad (12).
+/// One loose shape's kind (its index in `lanecast::scene::KINDS`) and numbers, for pickling
+/// (`Shape::write_numbers`).
 fn shape_numbers(s: &Shape, out: &mut Vec<f64>) -> u8 {
-    match s {
-        Shape::Sphere { center, radius } => {
-            out.extend(center.to_array());
-            out.push(*radius);
-            0
-        }
-        Shape::Triangle(v) => {
-            v.iter().for_each(|p| out.extend(p.to_array()));
-            1
-        }
-        Shape::Quad(v) => {
-            v.iter().for_each(|p| out.extend(p.to_array()));
-            2
-        }
-    }
+    s.write_numbers(out);
+    s.kind() as u8
 }
 
 /// A scene's primitives in id order, as runs: loose shapes (kinds, numbers, lines) and meshes
@@ -167,18 +154,11 @@ pub(crate) fn from_state(state: SceneState<'_>) -> PyResult<Scene> {
                 }
                 let mut at = 0;
                 for (k, &line) in kinds.iter().zip(lines) {
-                    let n = [4, 9, 12].get(*k as usize).ok_or_else(|| corrupt("kind"))?;
+                    let n = Shape::numbers_of(*k as usize).ok_or_else(|| corrupt("kind"))?;
                     let x = nums.get(at..at + n).ok_or_else(|| corrupt("numbers"))?;
                     at += n;
-                    let p = |i: usize| glam::DVec3::new(x[3 * i], x[3 * i + 1], x[3 * i + 2]);
-                    let shape = match k {
-                        0 => Shape::Sphere {
-                            center: p(0),
-                            radius: x[3],
-                        },
-                        1 => Shape::Triangle([p(0), p(1), p(2)]),
-                        _ => Shape::Quad([p(0), p(1), p(2), p(3)]),
-                    };
+                    let shape =
+                        Shape::from_numbers(*k as usize, x).ok_or_else(|| corrupt("kind"))?;
                     shapes.push(shape, line as usize);
                 }
                 if at != nums.len() {

@@ -280,16 +280,10 @@ fn morton_order(scene: &Scene, ids: Vec<u32>) -> Vec<u32> {
                 2
             }
         };
-        match s {
-            Shape::Sphere { center, .. } => (3u8, center),
-            Shape::Triangle(v) => (
-                class((v[1] - v[0]).cross(v[2] - v[0])),
-                (v[0] + v[1] + v[2]) / 3.0,
-            ),
-            Shape::Quad(v) => (
-                class((v[2] - v[0]).cross(v[3] - v[1])),
-                (v[0] + v[1] + v[2] + v[3]) / 4.0,
-            ),
+        match s.centre_and_normal() {
+            (centre, Some(n)) => (class(n), centre),
+            // (a curved shape: a class of its own)
+            (centre, None) => (3u8, centre),
         }
     };
     let (classes, centres): (Vec<u8>, Vec<DVec3>) = (ids.par_iter())

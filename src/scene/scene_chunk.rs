@@ -8,14 +8,13 @@
 //! camera in an earlier chunk) decides otherwise.
 
 use super::CameraSpec;
-use super::Shape;
 use super::chunks::{self, Budget, Chunk};
 use super::statement::{
     Ctx, KEYWORDS, Tok, fast_shape, first_token_col, parse_camera, parse_shape, quote, tokenize,
 };
+use super::{KINDS, Shape};
 use crate::error::Error;
 use crate::limits::MAX_LINE_BYTES;
-use glam::DVec3;
 use std::path::Path;
 
 /// What one chunk found, in line order.
@@ -72,14 +71,7 @@ impl ChunkOut<'_> {
             num_at: self.nums.len() as u32,
             line: (line - self.first_line) as u32,
         });
-        match shape {
-            Shape::Sphere { center, radius } => {
-                self.nums.extend_from_slice(&center.to_array());
-                self.nums.push(*radius);
-            }
-            Shape::Triangle(v) => v.iter().for_each(|p| self.nums.extend(p.to_array())),
-            Shape::Quad(v) => v.iter().for_each(|p| self.nums.extend(p.to_array())),
-        }
+        shape.write_numbers(&mut self.nums);
     }
 
     /// Primitive `k` as a shape again.
@@ -90,15 +82,10 @@ impl ChunkOut<'_> {
             .get(k + 1)
             .map_or(self.nums.len(), |p| p.num_at as usize);
         let x = &self.nums[at..end];
-        let p = |i: usize| DVec3::new(x[3 * i], x[3 * i + 1], x[3 * i + 2]);
-        match x.len() {
-            4 => Shape::Sphere {
-                center: p(0),
-                radius: x[3],
-            },
-            9 => Shape::Triangle([p(0), p(1), p(2)]),
-            _ => Shape::Quad([p(0), p(1), p(2), p(3)]),
-        }
+        // (the kinds' counts of numbers differ: the count tells the kind)
+        let kind = (0..KINDS.len()).find(|&k| Shape::numbers_of(k) == Some(x.len()));
+        kind.and_then(|k| Shape::from_numbers(k, x))
+            .expect("a chunk holds whole shapes")
     }
 }
 

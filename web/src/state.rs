@@ -261,11 +261,7 @@ impl State {
             .normalize();
         let shapes = &loaded.scene().shapes;
         let id_u = id as usize;
-        let kind = match shapes.get(id_u) {
-            Shape::Sphere { .. } => "sphere",
-            Shape::Triangle(_) => "triangle",
-            Shape::Quad(_) => "quad",
-        };
+        let kind = shapes.get(id_u).keyword();
         Some(Pick {
             id,
             kind,
@@ -281,19 +277,12 @@ impl State {
 fn bounds(scene: &Scene) -> [DVec3; 2] {
     let mut lo = DVec3::splat(f64::INFINITY);
     let mut hi = DVec3::splat(f64::NEG_INFINITY);
-    let mut add = |p: DVec3, r: f64| {
-        lo = lo.min(p - r);
-        hi = hi.max(p + r);
-    };
     if scene.shapes.is_empty() {
         return [scene.camera.look; 2];
     }
     for shape in scene.shapes.iter() {
-        match shape {
-            Shape::Sphere { center, radius } => add(center, radius),
-            Shape::Triangle(v) => v.into_iter().for_each(|p| add(p, 0.0)),
-            Shape::Quad(v) => v.into_iter().for_each(|p| add(p, 0.0)),
-        }
+        let (min, max) = shape.bounds(DVec3::ZERO);
+        (lo, hi) = (lo.min(min), hi.max(max));
     }
     [lo, hi]
 }
