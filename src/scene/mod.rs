@@ -273,7 +273,7 @@ mod shape_tests {
     /// greatest of the rounded differences.
     #[test]
     fn numbers_round_trip_and_boxes_hold_the_shape() {
-        let mut rng = Rng(0x5EA_50);
+        let mut rng = Rng(0x5EA5);
         let mut seen = [false; KINDS.len()];
         for case in 0..3000 {
             let scale = rng.log(-3.0, 12.0);
