@@ -12,7 +12,7 @@ use crate::kernel::polygon::{Quad, QuadK, Triangle, TriangleK};
 use crate::kernel::sphere::{Sphere, SphereK};
 use crate::par::prelude::*;
 use crate::real::Real;
-use crate::scene::{Scene, Shape, Shapes};
+use crate::scene::{KINDS, Scene, Shape, Shapes};
 use glam::DVec3;
 
 /// One type's prepared primitives and their ids: in file order, or in the order an acceleration
@@ -81,7 +81,7 @@ impl<K> Group<K> {
 /// A rearrangement of the stores, per kind (spheres, triangles, quads): element `j` of a kind's
 /// list is the old index of the primitive that moves to index `j`; `None` keeps the kind as it
 /// is. The tiles order the stores the way the render reaches them (`accel::tiles`).
-pub type Order = [Option<Vec<u32>>; 3];
+pub type Order = [Option<Vec<u32>>; KINDS.len()];
 
 /// Each of `cols` (columns of one length) rearranged so that its element `j` is its old
 /// element `order[j]`, gathered on all threads through one scratch buffer that each column's
@@ -101,7 +101,7 @@ pub(crate) fn gather<'c, T: Clone + Send + Sync + 'c>(
 
 /// Every primitive's eye-relative constants, by type. Polygons seen exactly edge-on from the eye
 /// are left out (they cover no pixel; see `kernel::polygon`).
-#[derive(Debug, Clone, PartialEq, Default)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Prepared<T> {
     /// Sphere constants.
     pub spheres: Group<SphereK<T>>,
@@ -109,6 +109,16 @@ pub struct Prepared<T> {
     pub triangles: Group<TriangleK<T>>,
     /// Quad constants (4 edge planes).
     pub quads: Group<QuadK<T>>,
+}
+
+impl<T> Default for Prepared<T> {
+    fn default() -> Self {
+        Prepared {
+            spheres: Group::default(),
+            triangles: Group::default(),
+            quads: Group::default(),
+        }
+    }
 }
 
 impl Prepared<f64> {
@@ -133,18 +143,14 @@ impl Prepared<f64> {
 
     /// Rearranged to `order`.
     pub fn permute(&mut self, order: &Order) {
-        self.spheres.permute(order[0].as_ref());
-        self.triangles.permute(order[1].as_ref());
-        self.quads.permute(order[2].as_ref());
+        for_each_family!(F => F::group_mut(self).permute(order[F::KIND].as_ref()));
     }
 
     /// The same constants rounded to `T`.
     pub fn cast<T: Real>(&self) -> Prepared<T> {
-        Prepared {
-            spheres: self.spheres.map(|k| k.cast()),
-            triangles: self.triangles.map(|k| k.cast()),
-            quads: self.quads.map(|k| k.cast()),
-        }
+        let mut out = Prepared::default();
+        for_each_family!(F => *F::group_mut(&mut out) = F::group(self).map(F::cast));
+        out
     }
 }
 
@@ -152,16 +158,18 @@ impl Prepared<f64> {
 /// structures and the packed stores use) with its scene id: a store of records ([`Prepared`]),
 /// or records computed when asked ([`SceneRecords`]).
 pub trait Records<T: Real> {
-    /// How many spheres, triangles and quads.
-    fn counts(&self) -> [usize; 3];
+    /// How many primitives of each kind (`scene::KINDS` order).
+    fn counts(&self) -> [usize; KINDS.len()];
     /// Primitive `i` of family `F`: its constants and id (`None`: it covers no pixel).
     fn record<F: Stored>(&self, i: usize) -> Option<(F::K<T>, i32)>;
 }
 
 impl<T: Real> Records<T> for Prepared<T> {
     #[inline(always)]
-    fn counts(&self) -> [usize; 3] {
-        [self.spheres.len(), self.triangles.len(), self.quads.len()]
+    fn counts(&self) -> [usize; KINDS.len()] {
+        let mut n = [0; KINDS.len()];
+        for_each_family!(F => n[F::KIND] = F::group(self).len());
+        n
     }
     #[inline(always)]
     fn record<F: Stored>(&self, i: usize) -> Option<(F::K<T>, i32)> {
@@ -182,16 +190,33 @@ pub trait Stored: Family + Sized {
     fn group_mut<T: Real>(p: &mut Prepared<T>) -> &mut Group<Self::K<T>>;
     /// Its columns in `p`.
     fn columns(p: &Packed) -> &Self::Columns;
+    /// Its columns in `p`, to fill.
+    fn columns_mut(p: &mut Packed) -> &mut Self::Columns;
 }
 
-/// A family's f32 columns as the packet loops read them.
-pub trait Columns<F: Family> {
+/// A family's f32 columns as the packet loops read them, and as [`Packed`] builds, joins and
+/// rearranges them.
+pub trait Columns<F: Family>: Default {
     /// Primitive `i`'s constants, gathered from the columns.
     fn get(&self, i: usize) -> F::K<f32>;
     /// Primitive `i`'s scene id, as f32 (exact below 2^24 = `limits::MAX_PRIMITIVES`).
     fn id(&self, i: usize) -> f32;
     /// How many primitives.
     fn len(&self) -> usize;
+    /// Every primitive's scene id, in store order.
+    fn ids(&self) -> &[f32];
+    /// Appends one primitive's constants with its id.
+    fn push(&mut self, k: &F::K<f32>, id: f32);
+    /// Every column emptied, its allocation kept.
+    fn clear(&mut self);
+    /// Room for exactly `n` more primitives in every column.
+    fn reserve(&mut self, n: usize);
+    /// Appends every primitive of `other`.
+    fn append(&mut self, other: &Self);
+    /// Rearranged to `order` ([`Order`]), or kept with `None`.
+    fn permute(&mut self, order: Option<&Vec<u32>>);
+    /// Every column's memory beyond its length given back.
+    fn shrink_to_fit(&mut self);
 }
 
 /// The registration's one list of families, in kind order: `for_each_family!(F => expr)`
@@ -271,6 +296,10 @@ impl Stored for Sphere {
     fn columns(p: &Packed) -> &Spheres {
         &p.spheres
     }
+    #[inline(always)]
+    fn columns_mut(p: &mut Packed) -> &mut Spheres {
+        &mut p.spheres
+    }
 }
 
 impl Stored for Triangle {
@@ -286,6 +315,10 @@ impl Stored for Triangle {
     #[inline(always)]
     fn columns(p: &Packed) -> &Polygons<3> {
         &p.triangles
+    }
+    #[inline(always)]
+    fn columns_mut(p: &mut Packed) -> &mut Polygons<3> {
+        &mut p.triangles
     }
 }
 
@@ -303,6 +336,10 @@ impl Stored for Quad {
     fn columns(p: &Packed) -> &Polygons<4> {
         &p.quads
     }
+    #[inline(always)]
+    fn columns_mut(p: &mut Packed) -> &mut Polygons<4> {
+        &mut p.quads
+    }
 }
 
 /// The f64 records of the primitives of a [`Packed`] store, computed from the scene's shapes
@@ -312,7 +349,7 @@ impl Stored for Quad {
 #[derive(Debug, Clone, Copy)]
 pub struct SceneRecords<'a> {
     shapes: &'a Shapes,
-    ids: [&'a [f32]; 3],
+    ids: [&'a [f32]; KINDS.len()],
     eye: DVec3,
 }
 
@@ -334,7 +371,7 @@ impl<'a> SceneRecords<'a> {
 }
 
 impl Records<f64> for SceneRecords<'_> {
-    fn counts(&self) -> [usize; 3] {
+    fn counts(&self) -> [usize; KINDS.len()] {
         self.ids.map(|ids| ids.len())
     }
     #[inline(always)]
@@ -344,9 +381,20 @@ impl Records<f64> for SceneRecords<'_> {
     }
 }
 
+/// All primitives as f32 structure-of-arrays stores, one per family (`soa/columns.rs`).
+#[derive(Debug, Clone, Default)]
+pub struct Packed {
+    /// Sphere columns.
+    pub spheres: Spheres,
+    /// Triangle columns (3 edge planes).
+    pub triangles: Polygons<3>,
+    /// Quad columns (4 edge planes).
+    pub quads: Polygons<4>,
+}
+
 mod columns;
 pub mod trace;
-pub use columns::{Packed, Polygons, Spheres};
+pub use columns::{Polygons, Spheres};
 
 /// A set of primitive ids, one bit each: the primitives a view leaves out of its stores
 /// (`render::cull`: those it has shown it cannot see).

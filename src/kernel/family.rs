@@ -34,6 +34,14 @@ pub trait Family: 'static {
     /// (a polygon seen exactly edge-on).
     fn setup(g: &Self::Geometry, eye: DVec3) -> Option<Self::K<f64>>;
 
+    /// [`Family::setup`] of four primitives at once, bit for bit the same; a family whose
+    /// setup has a four-lane form (triangles: `triangle_setup::triangles_x4`) gives it here.
+    /// The stores are built through it.
+    #[inline(always)]
+    fn setup_x4(g: &[Self::Geometry; 4], eye: DVec3) -> [Option<Self::K<f64>>; 4] {
+        std::array::from_fn(|i| Self::setup(&g[i], eye))
+    }
+
     /// The f64 constants rounded to `T`, once each.
     fn cast<T: Real>(k: &Self::K<f64>) -> Self::K<T>;
 

@@ -19,7 +19,6 @@ pub mod lanes;
 pub mod packet;
 pub mod polygon;
 pub mod sphere;
-pub mod triangle_setup;
 pub mod wide64;
 
 pub use family::Family;

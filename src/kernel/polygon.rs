@@ -54,6 +54,9 @@ use crate::scene::Shape;
 use glam::DVec3;
 use wide::f32x8;
 
+pub mod triangle_setup;
+use triangle_setup::triangles_x4;
+
 /// Polygons whose plane passes within this sine of the eye's line of sight to a vertex are
 /// treated as seen edge-on and never drawn: 1e-12 is ~4000 times the f64 rounding of that
 /// sine, and a polygon seen at 1e-12 rad covers 1e-12 of its size on screen.
@@ -209,6 +212,10 @@ impl Family for Triangle {
     #[inline(always)]
     fn setup(v: &[DVec3; 3], eye: DVec3) -> Option<TriangleK<f64>> {
         TriangleK::triangle(v, eye)
+    }
+    #[inline(always)]
+    fn setup_x4(v: &[[DVec3; 3]; 4], eye: DVec3) -> [Option<TriangleK<f64>>; 4] {
+        triangles_x4(v, eye)
     }
     #[inline(always)]
     fn cast<T: Real>(k: &TriangleK<f64>) -> TriangleK<T> {

@@ -2,13 +2,12 @@
 //! constant, one store per type, built straight from the scene on all threads and rearranged
 //! as an acceleration structure asks (`super::Order`).
 
-use super::{Columns, Group, IdSet, Order, Prepared, gather};
+use super::{Columns, IdSet, Order, Packed, Prepared, Stored, Visit, gather};
 use crate::kernel::Family;
-use crate::kernel::polygon::{PolyK, QuadK, TriangleK};
+use crate::kernel::polygon::PolyK;
 use crate::kernel::sphere::{Sphere, SphereK};
-use crate::kernel::triangle_setup::triangles_x4;
 use crate::par::prelude::*;
-use crate::scene::{Scene, Shape};
+use crate::scene::{KINDS, Scene, Shape};
 use glam::DVec3;
 
 /// Spheres as f32 columns.
@@ -31,19 +30,6 @@ pub struct Spheres {
 }
 
 impl Spheres {
-    fn new(g: &Group<SphereK<f64>>) -> Spheres {
-        let k: Vec<SphereK<f32>> = g.k.iter().map(|k| k.cast()).collect();
-        Spheres {
-            ocx: k.iter().map(|k| k.oc[0]).collect(),
-            ocy: k.iter().map(|k| k.oc[1]).collect(),
-            ocz: k.iter().map(|k| k.oc[2]).collect(),
-            r2: k.iter().map(|k| k.r2).collect(),
-            c: k.iter().map(|k| k.c).collect(),
-            inside: k.iter().map(|k| k.inside).collect(),
-            id: g.id.iter().map(|&i| i as f32).collect(),
-        }
-    }
-
     /// The f32 columns (all but `inside`).
     fn floats(&mut self) -> [&mut Vec<f32>; 6] {
         let Spheres {
@@ -149,17 +135,6 @@ impl<const N: usize> Default for Polygons<N> {
 }
 
 impl<const N: usize> Polygons<N> {
-    fn new(g: &Group<PolyK<f64, N>>) -> Polygons<N> {
-        let k: Vec<PolyK<f32, N>> = g.k.iter().map(|k| k.cast()).collect();
-        let col = |f: &dyn Fn(&PolyK<f32, N>) -> f32| k.iter().map(f).collect::<Vec<f32>>();
-        Polygons {
-            n: std::array::from_fn(|e| std::array::from_fn(|c| col(&|k| k.n[e][c]))),
-            nrm: std::array::from_fn(|c| col(&|k| k.nrm[c])),
-            p: col(&|k| k.p),
-            id: g.id.iter().map(|&i| i as f32).collect(),
-        }
-    }
-
     /// Every column: the edge normals', the plane normal's, `p` and `id`.
     fn columns(&mut self) -> impl Iterator<Item = &mut Vec<f32>> {
         let cols = self.n.iter_mut().flatten().chain(&mut self.nrm);
@@ -236,6 +211,29 @@ impl Columns<Sphere> for Spheres {
     fn len(&self) -> usize {
         Spheres::len(self)
     }
+    fn ids(&self) -> &[f32] {
+        &self.id
+    }
+    #[inline]
+    fn push(&mut self, k: &SphereK<f32>, id: f32) {
+        Spheres::push(self, k, id)
+    }
+    fn clear(&mut self) {
+        Spheres::clear(self)
+    }
+    fn reserve(&mut self, n: usize) {
+        Spheres::reserve(self, n)
+    }
+    fn append(&mut self, other: &Spheres) {
+        Spheres::append(self, other)
+    }
+    fn permute(&mut self, order: Option<&Vec<u32>>) {
+        Spheres::permute(self, order)
+    }
+    fn shrink_to_fit(&mut self) {
+        self.floats().into_iter().for_each(Vec::shrink_to_fit);
+        self.inside.shrink_to_fit();
+    }
 }
 
 /// Triangles (`N` = 3) and quads (`N` = 4) alike: any family whose constants are an `N`-edge
@@ -253,69 +251,108 @@ impl<F: Family<K<f32> = PolyK<f32, N>>, const N: usize> Columns<F> for Polygons<
     fn len(&self) -> usize {
         Polygons::len(self)
     }
+    fn ids(&self) -> &[f32] {
+        &self.id
+    }
+    #[inline]
+    fn push(&mut self, k: &PolyK<f32, N>, id: f32) {
+        Polygons::push(self, k, id)
+    }
+    fn clear(&mut self) {
+        Polygons::clear(self)
+    }
+    fn reserve(&mut self, n: usize) {
+        Polygons::reserve(self, n)
+    }
+    fn append(&mut self, other: &Polygons<N>) {
+        Polygons::append(self, other)
+    }
+    fn permute(&mut self, order: Option<&Vec<u32>>) {
+        Polygons::permute(self, order)
+    }
+    fn shrink_to_fit(&mut self) {
+        self.columns().for_each(Vec::shrink_to_fit);
+    }
 }
 
-/// Up to four triangles waiting for [`triangles_x4`], with their ids.
-#[derive(Default)]
+/// Up to four shapes of one kind waiting for their family's [`Family::setup_x4`], with their
+/// ids: one per kind while a part of the stores is built.
+#[derive(Clone, Copy)]
 struct Four {
-    v: [[DVec3; 3]; 4],
+    shapes: [Shape; 4],
     id: [f32; 4],
     n: usize,
 }
 
-impl Four {
-    /// Adds one triangle; with four, their constants go to `store`.
-    #[inline]
-    fn add(&mut self, v: [DVec3; 3], id: f32, store: &mut Polygons<3>, eye: DVec3) {
-        (self.v[self.n], self.id[self.n]) = (v, id);
-        self.n += 1;
-        if self.n == 4 {
-            self.flush(store, eye);
+impl Default for Four {
+    fn default() -> Four {
+        Four {
+            shapes: [Shape::Triangle([DVec3::ZERO; 3]); 4],
+            id: [0.0; 4],
+            n: 0,
         }
-    }
-
-    /// The constants of the triangles waiting, in their order, to `store`.
-    fn flush(&mut self, store: &mut Polygons<3>, eye: DVec3) {
-        if self.n == 0 {
-            return;
-        }
-        // (unused lanes repeat the first triangle, and are dropped)
-        for k in self.n..4 {
-            self.v[k] = self.v[0];
-        }
-        let ks = triangles_x4(&self.v, eye);
-        for (k, id) in ks.iter().zip(self.id).take(self.n) {
-            if let Some(k) = k {
-                store.push(&k.cast(), id);
-            }
-        }
-        self.n = 0;
     }
 }
 
-/// All primitives as f32 structure-of-arrays stores, one per type.
-#[derive(Debug, Clone, Default)]
-pub struct Packed {
-    /// Sphere columns.
-    pub spheres: Spheres,
-    /// Triangle columns (3 edge planes).
-    pub triangles: Polygons<3>,
-    /// Quad columns (4 edge planes).
-    pub quads: Polygons<4>,
+/// `shape` (with its id) added to the four waiting of its family; with four, their constants
+/// go to `part`.
+struct Wait<'a> {
+    four: &'a mut Four,
+    shape: Shape,
+    id: f32,
+    part: &'a mut Packed,
+    eye: DVec3,
+}
+
+impl Visit<()> for Wait<'_> {
+    #[inline]
+    fn visit<F: Stored>(self, _: F::Geometry) {
+        let four = self.four;
+        (four.shapes[four.n], four.id[four.n]) = (self.shape, self.id);
+        four.n += 1;
+        if four.n == 4 {
+            flush::<F>(four, self.part, self.eye);
+        }
+    }
+}
+
+/// The constants of the shapes waiting in `four` (all of family `F`), in their order, to
+/// `part`'s columns of `F`, rounded to f32: a polygon seen edge-on from `eye` (or, as the
+/// kernels' constructors refuse, with an edge too short to resolve) is left out.
+fn flush<F: Stored>(four: &mut Four, part: &mut Packed, eye: DVec3) {
+    if four.n == 0 {
+        return;
+    }
+    // (unused lanes repeat the first shape, and are dropped)
+    let g = std::array::from_fn(|k| {
+        let shape = four.shapes[if k < four.n { k } else { 0 }];
+        F::geometry(shape).expect("a family's four hold its own shapes")
+    });
+    let ks = F::setup_x4(&g, eye);
+    let columns = F::columns_mut(part);
+    for (k, &id) in ks.iter().zip(&four.id).take(four.n) {
+        if let Some(k) = k {
+            Columns::<F>::push(columns, &F::cast(k), id);
+        }
+    }
+    four.n = 0;
 }
 
 impl Packed {
-    /// The scene ids of each kind's primitives, in store order: spheres, triangles, quads
-    /// (the kinds numbered 0, 1, 2, as the tiles number them).
+    /// The scene ids of each kind's primitives, in store order (`scene::KINDS` order, as the
+    /// tiles number the kinds).
     #[inline]
-    pub fn ids(&self) -> [&[f32]; 3] {
-        [&self.spheres.id, &self.triangles.id, &self.quads.id]
+    pub fn ids(&self) -> [&[f32]; KINDS.len()] {
+        let mut ids: [&[f32]; KINDS.len()] = [&[]; KINDS.len()];
+        for_each_family!(F => ids[F::KIND] = Columns::<F>::ids(F::columns(self)));
+        ids
     }
 
     /// The stores of `scene` seen from `eye`, built straight from the shapes on all threads,
-    /// with no f64 copy kept: chunks of shapes are prepared in parallel (the same
-    /// `SphereK::new`/`PolyK` constructors and f32 rounding as [`Prepared::new`] and
-    /// [`Packed::new`], so the columns are identical), then joined in file order.
+    /// with no f64 copy kept: chunks of shapes are prepared in parallel (each family's
+    /// `Family::setup_x4`, bit for bit its `setup`, and the same f32 rounding as
+    /// [`Prepared::new`] and [`Packed::new`], so the columns are identical), then joined in
+    /// file order.
     pub fn from_scene(scene: &Scene, eye: DVec3) -> Packed {
         Packed::from_scene_in(scene, eye, Packed::default(), None)
     }
@@ -333,30 +370,34 @@ impl Packed {
         const CHUNK: usize = 1 << 14;
         // Batches of a few chunks per thread: the parts of one batch are joined (and freed)
         // before the next is prepared, so the stores exist about once at any time, not twice.
-        // The columns are allocated once, for every shape of their type (edge-on polygons,
+        // The columns are allocated once, for every shape of their kind (edge-on polygons,
         // left out, are rare), so they never move or grow.
         let batch_len = CHUNK * (4 * crate::par::current_num_threads()).max(16);
         // (the primitives left out need no room)
         let most = scene.shapes.len() - left_out.map_or(0, IdSet::len);
-        let [spheres, triangles, quads] = scene.counts();
-        let (spheres, triangles, quads) = (spheres.min(most), triangles.min(most), quads.min(most));
-        out.spheres.clear();
-        out.triangles.clear();
-        out.quads.clear();
-        out.spheres.reserve(spheres);
-        out.triangles.reserve(triangles);
-        out.quads.reserve(quads);
+        let counts = scene.counts();
+        for_each_family!(F => {
+            let columns = F::columns_mut(&mut out);
+            Columns::<F>::clear(columns);
+            Columns::<F>::reserve(columns, counts[F::KIND].min(most));
+        });
         for batch in (0..scene.shapes.len()).step_by(batch_len) {
             let ids = batch..(batch + batch_len).min(scene.shapes.len());
             let parts: Vec<Packed> = (scene.shapes.par_chunks(ids, CHUNK))
                 .map(|(first, shapes)| {
                     let mut part = Packed::default();
-                    // triangles four at a time (`triangles_x4`: the same constants), the
-                    // others one by one; each store keeps its shapes' order
-                    let mut four = Four::default();
-                    let mut add = |id: usize, shape: Shape| match shape {
-                        Shape::Triangle(v) => four.add(v, id as f32, &mut part.triangles, eye),
-                        other => part.push(other, id as f32, eye),
+                    // each family's shapes four at a time (`Family::setup_x4`), each store
+                    // keeping its shapes' order
+                    let mut four = [Four::default(); KINDS.len()];
+                    let mut add = |id: usize, shape: Shape| {
+                        let wait = Wait {
+                            four: &mut four[shape.kind()],
+                            shape,
+                            id: id as f32,
+                            part: &mut part,
+                            eye,
+                        };
+                        super::visit(shape, wait)
                     };
                     match left_out {
                         None => shapes.enumerate().for_each(|(j, s)| add(first + j, s)),
@@ -369,66 +410,38 @@ impl Packed {
                             }
                         }
                     }
-                    four.flush(&mut part.triangles, eye);
+                    for_each_family!(F => flush::<F>(&mut four[F::KIND], &mut part, eye));
                     part
                 })
                 .collect();
             for part in &parts {
-                out.spheres.append(&part.spheres);
-                out.triangles.append(&part.triangles);
-                out.quads.append(&part.quads);
+                for_each_family!(F => Columns::<F>::append(F::columns_mut(&mut out), F::columns(part)));
             }
         }
         out
     }
 
-    /// Appends `shape`'s constants seen from `eye` with id `id`, unless it is a polygon seen
-    /// edge-on (or, as the kernels' constructors refuse, has an edge too short to resolve).
-    #[inline]
-    fn push(&mut self, shape: Shape, id: f32, eye: DVec3) {
-        match shape {
-            Shape::Sphere { center, radius } => self
-                .spheres
-                .push(&SphereK::new(center, radius, eye).cast(), id),
-            Shape::Triangle(v) => {
-                if let Some(k) = TriangleK::triangle(&v, eye) {
-                    self.triangles.push(&k.cast(), id)
-                }
-            }
-            Shape::Quad(v) => {
-                if let Some(k) = QuadK::quad(&v, eye) {
-                    self.quads.push(&k.cast(), id)
-                }
-            }
-        }
-    }
-
     /// Every column's memory beyond its length given back (the next view's columns grow
     /// again where they need to).
     pub(crate) fn shrink_to_fit(&mut self) {
-        self.spheres
-            .floats()
-            .into_iter()
-            .for_each(Vec::shrink_to_fit);
-        self.spheres.inside.shrink_to_fit();
-        self.triangles.columns().for_each(Vec::shrink_to_fit);
-        self.quads.columns().for_each(Vec::shrink_to_fit);
+        for_each_family!(F => Columns::<F>::shrink_to_fit(F::columns_mut(self)));
     }
 
     /// Rearranged to `order`.
     pub fn permute(&mut self, order: &Order) {
-        self.spheres.permute(order[0].as_ref());
-        self.triangles.permute(order[1].as_ref());
-        self.quads.permute(order[2].as_ref());
+        for_each_family!(F => Columns::<F>::permute(F::columns_mut(self), order[F::KIND].as_ref()));
     }
 
     /// The stores of prepared f64 constants, rounded to f32.
     pub fn new(p: &Prepared<f64>) -> Packed {
-        Packed {
-            spheres: Spheres::new(&p.spheres),
-            triangles: Polygons::new(&p.triangles),
-            quads: Polygons::new(&p.quads),
-        }
+        let mut out = Packed::default();
+        for_each_family!(F => {
+            let (group, columns) = (F::group(p), F::columns_mut(&mut out));
+            for (k, &id) in group.k.iter().zip(&group.id) {
+                Columns::<F>::push(columns, &F::cast(k), id as f32);
+            }
+        });
+        out
     }
 }
 

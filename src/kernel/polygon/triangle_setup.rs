@@ -12,7 +12,7 @@
 //! triangles at every scale, edge-on, with collapsed edges, NaN and infinite vertices).
 //! Precision and failure cases are [`PolyK::new`]'s.
 
-use super::polygon::{EDGE_ON_SINE, PolyK, TriangleK};
+use super::{EDGE_ON_SINE, PolyK, TriangleK};
 use crate::limits::MIN_EDGE_ANGLE;
 use glam::DVec3;
 use wide::f64x4;
