@@ -218,7 +218,7 @@ fn general_line<'a>(
             });
             Ok(None)
         }
-        "sphere" | "triangle" | "quad" => parse_shape(ctx, toks)
+        kind if KINDS.iter().any(|&(keyword, _)| keyword == kind) => parse_shape(ctx, toks)
             .map(Some)
             .map_err(StopKind::Primitive),
         other => {
