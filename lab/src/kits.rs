@@ -3,30 +3,34 @@
 //! renderer (which has acceleration structures), so the lab measures the intersection methods
 //! alone.
 //!
-//! A [`Kit`] holds one method's constants for one scene (spheres, triangles, quads, each with
-//! its id) and the camera's ray tables; [`Kit::render_x8`] traces 4x2 pixel blocks as 8-lane
-//! packets (lanes past the image border masked, as in the main renderer) and
-//! [`Kit::render_x1`] one ray at a time in f32 with the same method. [`Oracle`] is the f64
-//! scalar oracle. The f64x4 packet form of the default methods, which takes the accelerations
-//! and every thread, is lanecast's `render::wide64::Kit64` (`--precision f64`).
+//! A [`Kit`] holds one method's constants for one scene and the camera's ray tables: for each
+//! of lanecast's families, in kind order ([`FamilyList`] over lanecast's list of families), each
+//! primitive's constants and id, for the method's own kernel of that family ([`Kernels::Own`],
+//! `methods/`) or else lanecast's ([`Family::setup`], [`Family::cast`], [`Family::hit_x1`],
+//! [`Family::hit_lanes`]); the families are traced in kind order, as lanecast's loops trace
+//! them, so ties resolve alike. A family added to lanecast needs nothing here: every method
+//! runs it through lanecast's kernel. [`Kit::render_x8`]
+//! traces 4x2 pixel blocks as 8-lane packets (lanes past the image border masked, as in the
+//! main renderer) and [`Kit::render_x1`] one ray at a time in f32 with the same method.
+//! [`Oracle`] is the f64 scalar oracle. The f64x4 packet form of the default methods, which
+//! takes the accelerations and every thread, is lanecast's `render::wide64::Kit64`
+//! (`--precision f64`).
 
-use crate::methods::mt::{MtK, mt_x1, mt_x8};
-use crate::methods::plane::{PlaneK, plane_x1, plane_x8};
-use crate::methods::sphere_naive::{NaiveK, naive_x1, naive_x8};
-use crate::methods::woop::{WoopK, WoopRay, WoopRay8, woop_ray, woop_x1, woop_x8};
-use crate::methods::{quad_split, world};
+mod families;
+
+use crate::methods::{
+    Direction, MtOwn, NaiveOwn, Own, PlaneOwn, Rays, WoopOwn, WoopRays, WorldOwn,
+};
+use families::Families;
 use glam::DVec3;
 use lanecast::experimental::camera::RayTables;
 use lanecast::experimental::kernel::packet::block_rays;
-use lanecast::experimental::kernel::polygon::{QuadK, TriangleK, polygon_x1, polygon_x8};
-use lanecast::experimental::kernel::sphere::{SphereK, sphere_x1, sphere_x8};
-use lanecast::experimental::kernel::{Hit, Hit8, LANES};
+use lanecast::experimental::kernel::{Family, Hit, Hit8, LANES};
 use lanecast::experimental::real::V3;
 use lanecast::experimental::soa::Prepared;
 use lanecast::experimental::soa::trace::trace_x1;
 use lanecast::scene::{Scene, Shape};
 use lanecast::{Camera, Frame};
-use std::marker::PhantomData;
 use wide::f32x8;
 
 /// Pixel block of one packet, as in the main renderer: 4 wide, 2 high.
@@ -34,371 +38,288 @@ pub const BW: usize = 4;
 /// Pixel block height: `LANES / BW` = 2 rows.
 pub const BH: usize = LANES / BW;
 
-/// A sphere method: constants and its 1- and 8-lane forms.
-pub trait SphereFamily {
-    /// One sphere's constants, in f32, as the method's kernels read them.
-    type K: Copy + Send + Sync;
-    /// The constants of the sphere (`center`, `radius`) seen from `eye`.
-    fn make(center: DVec3, radius: f64, eye: DVec3) -> Self::K;
-    /// Distance along unit direction `d` from the eye to the hit, when ahead of the eye.
-    fn x1(k: &Self::K, d: V3<f32>) -> Option<f32>;
-    /// [`SphereFamily::x1`] for eight directions: `None` when no lane can hit, else the lane
-    /// mask and distances (the caller keeps the lanes with 0 < t).
-    fn x8(k: &Self::K, d: &[f32x8; 3]) -> Option<(f32x8, f32x8)>;
+/// A lab method as the drivers run it: the families it re-implements and the per-ray data
+/// their kernels share.
+pub trait Kernels: 'static {
+    /// The per-ray data of its own kernels.
+    type Rays: Rays;
+    /// Its own kernels, one per family it re-implements ([`Own`], a tuple of up to three).
+    type Own: OwnList<Self::Rays>;
 }
 
-/// A triangle/quad method: constants (`None`: the primitive covers no pixel), the per-ray and
-/// per-packet data it shares over primitives, and its 1- and 8-lane forms.
-pub trait PolyFamily {
-    /// One triangle's constants, in f32.
-    type T: Copy + Send + Sync;
-    /// One quad's constants, in f32 (two triangles' for the triangle-only methods).
-    type Q: Copy + Send + Sync;
-    /// Per-ray data shared over primitives: the unit direction, or a method's ray transform.
-    type R1;
-    /// [`PolyFamily::R1`] for eight rays.
-    type R8;
-    /// The constants of triangle `v` (A, B, C) seen from `eye`; `None`: it covers no pixel.
-    fn tri(v: &[DVec3; 3], eye: DVec3) -> Option<Self::T>;
-    /// The constants of quad `v` (perimeter order) seen from `eye`; `None`: it covers no pixel.
-    fn quad(v: &[DVec3; 4], eye: DVec3) -> Option<Self::Q>;
-    /// The per-ray data of unit direction `d`.
-    fn ray1(d: V3<f32>) -> Self::R1;
-    /// The per-packet data of eight unit directions `d`.
-    fn ray8(d: &[f32x8; 3]) -> Self::R8;
-    /// Distance to the triangle along ray `r`, when it is hit ahead of the eye.
-    fn tri_x1(k: &Self::T, r: &Self::R1) -> Option<f32>;
-    /// [`PolyFamily::tri_x1`] for eight rays: `None` when no lane hits, else the lane mask and
-    /// distances (the caller keeps the lanes with 0 < t).
-    fn tri_x8(k: &Self::T, r: &Self::R8) -> Option<(f32x8, f32x8)>;
-    /// Distance to the quad along ray `r`, when it is hit ahead of the eye.
-    fn quad_x1(k: &Self::Q, r: &Self::R1) -> Option<f32>;
-    /// [`PolyFamily::quad_x1`] for eight rays, as [`PolyFamily::tri_x8`].
-    fn quad_x8(k: &Self::Q, r: &Self::R8) -> Option<(f32x8, f32x8)>;
+/// lanecast's kernels for every family, with eye-relative f64 setup: the default methods.
+pub struct Product;
+impl Kernels for Product {
+    type Rays = Direction;
+    type Own = ();
 }
 
-/// The nearer of two optional positive distances (the quad of two triangles).
-#[inline(always)]
-fn nearer(a: Option<f32>, b: Option<f32>) -> Option<f32> {
-    match (a, b) {
-        (Some(a), Some(b)) => Some(if b < a { b } else { a }),
-        (a, None) => a,
-        (None, b) => b,
-    }
+/// Möller–Trumbore (`methods::mt`), lanecast's kernels for the other families.
+pub struct Mt;
+impl Kernels for Mt {
+    type Rays = Direction;
+    type Own = MtOwn;
 }
 
-/// [`nearer`] lane by lane.
-#[inline(always)]
-fn nearer8(a: Option<(f32x8, f32x8)>, b: Option<(f32x8, f32x8)>) -> Option<(f32x8, f32x8)> {
-    let zero = f32x8::ZERO;
-    let inf = f32x8::splat(f32::INFINITY);
-    let keep = |(m, t): (f32x8, f32x8)| m & t.simd_gt(zero) & t.simd_lt(inf);
-    match (a, b) {
-        (Some(a), Some(b)) => {
-            let (ma, mb) = (keep(a), keep(b));
-            let take_b = mb & (!ma | b.1.simd_lt(a.1));
-            Some((ma | mb, take_b.select(b.1, a.1)))
-        }
-        (a, None) => a,
-        (None, b) => b,
-    }
+/// Woop–Benthin–Wald watertight (`methods::woop`), lanecast's kernels for the other families.
+pub struct Watertight;
+impl Kernels for Watertight {
+    type Rays = WoopRays;
+    type Own = WoopOwn;
 }
 
-/// The stable sphere (`kernel::sphere`), eye-relative f64 setup.
-pub struct Stable;
-impl SphereFamily for Stable {
-    type K = SphereK<f32>;
-    fn make(c: DVec3, r: f64, eye: DVec3) -> Self::K {
-        SphereK::new(c, r, eye).cast()
-    }
-    fn x1(k: &Self::K, d: V3<f32>) -> Option<f32> {
-        sphere_x1(k, d)
-    }
-    #[inline(always)]
-    fn x8(k: &Self::K, d: &[f32x8; 3]) -> Option<(f32x8, f32x8)> {
-        sphere_x8(k, d)
-    }
+/// The seed's plane + determinants (`methods::plane`), lanecast's kernels for the other
+/// families.
+pub struct Plane;
+impl Kernels for Plane {
+    type Rays = Direction;
+    type Own = PlaneOwn;
 }
 
-/// The stable sphere with f32 world-space setup (`methods::world`).
-pub struct StableWorld;
-impl SphereFamily for StableWorld {
-    type K = SphereK<f32>;
-    fn make(c: DVec3, r: f64, eye: DVec3) -> Self::K {
-        world::sphere(c, r, eye)
-    }
-    fn x1(k: &Self::K, d: V3<f32>) -> Option<f32> {
-        sphere_x1(k, d)
-    }
-    #[inline(always)]
-    fn x8(k: &Self::K, d: &[f32x8; 3]) -> Option<(f32x8, f32x8)> {
-        sphere_x8(k, d)
-    }
-}
-
-/// The textbook sphere (`methods::sphere_naive`).
+/// The textbook sphere (`methods::sphere_naive`), lanecast's kernels for the other families.
 pub struct Naive;
-impl SphereFamily for Naive {
-    type K = NaiveK<f32>;
-    fn make(c: DVec3, r: f64, eye: DVec3) -> Self::K {
-        NaiveK::new(c, r, eye).cast()
-    }
-    fn x1(k: &Self::K, d: V3<f32>) -> Option<f32> {
-        naive_x1(k, d)
+impl Kernels for Naive {
+    type Rays = Direction;
+    type Own = NaiveOwn;
+}
+
+/// lanecast's kernels with f32 world-space setup (`methods::world`) for the families it
+/// computes, eye-relative f64 setup for the others.
+pub struct WorldF32;
+impl Kernels for WorldF32 {
+    type Rays = Direction;
+    type Own = WorldOwn;
+}
+
+/// A list of families, `(F, (G, ... ()))` in kind order, with the stores a method's [`Kit`]
+/// keeps for them: one [`FamilyStore`] each, traced one after the other, every loop
+/// monomorphic.
+pub trait FamilyList: 'static {
+    /// The stores of the list's families for method `M`.
+    type Stores<M: Kernels>: Send + Sync;
+    /// Empty stores.
+    fn stores<M: Kernels>() -> Self::Stores<M>;
+    /// Adds `shape` with its id to its family's store, unless it covers no pixel from `eye`.
+    fn push<M: Kernels>(s: &mut Self::Stores<M>, shape: Shape, id: f32, eye: DVec3);
+    /// The eight rays `d` against every store, in list order, nearest hits folded into `hit`;
+    /// `r` holds the method's per-packet data once an own kernel has computed it.
+    fn x8<M: Kernels>(
+        s: &Self::Stores<M>,
+        d: &[f32x8; 3],
+        r: &mut Option<<M::Rays as Rays>::R8>,
+        hit: &mut Hit8,
+    );
+    /// The ray `d` against every store, in list order; `r` as in [`FamilyList::x8`].
+    fn x1<M: Kernels>(
+        s: &Self::Stores<M>,
+        d: V3<f32>,
+        r: &mut Option<<M::Rays as Rays>::R1>,
+        hit: &mut Hit<f32>,
+    );
+}
+
+impl FamilyList for () {
+    type Stores<M: Kernels> = ();
+    fn stores<M: Kernels>() {}
+    fn push<M: Kernels>(_: &mut (), _: Shape, _: f32, _: DVec3) {}
+    #[inline(always)]
+    fn x8<M: Kernels>(_: &(), _: &[f32x8; 3], _: &mut Option<<M::Rays as Rays>::R8>, _: &mut Hit8) {
     }
     #[inline(always)]
-    fn x8(k: &Self::K, d: &[f32x8; 3]) -> Option<(f32x8, f32x8)> {
-        naive_x8(k, d)
+    fn x1<M: Kernels>(_: &(), _: V3<f32>, _: &mut Option<<M::Rays as Rays>::R1>, _: &mut Hit<f32>) {
     }
 }
 
-/// The default edge-plane polygons (`kernel::polygon`): a quad is one four-edge polygon.
-pub struct EPlane;
-impl PolyFamily for EPlane {
-    type T = TriangleK<f32>;
-    type Q = QuadK<f32>;
-    type R1 = V3<f32>;
-    type R8 = [f32x8; 3];
-    fn tri(v: &[DVec3; 3], eye: DVec3) -> Option<Self::T> {
-        Some(TriangleK::triangle(v, eye)?.cast())
+impl<F: Family, Rest: FamilyList> FamilyList for (F, Rest) {
+    type Stores<M: Kernels> = (FamilyStore<F, M>, Rest::Stores<M>);
+    fn stores<M: Kernels>() -> Self::Stores<M> {
+        let own = M::Own::stores();
+        (
+            FamilyStore {
+                product: Vec::new(),
+                own,
+            },
+            Rest::stores::<M>(),
+        )
     }
-    fn quad(v: &[DVec3; 4], eye: DVec3) -> Option<Self::Q> {
-        Some(QuadK::quad(v, eye)?.cast())
-    }
-    fn ray1(d: V3<f32>) -> Self::R1 {
-        d
-    }
-    fn ray8(d: &[f32x8; 3]) -> Self::R8 {
-        *d
-    }
-    fn tri_x1(k: &Self::T, d: &Self::R1) -> Option<f32> {
-        polygon_x1(k, *d)
-    }
-    #[inline(always)]
-    fn tri_x8(k: &Self::T, d: &Self::R8) -> Option<(f32x8, f32x8)> {
-        polygon_x8(k, d)
-    }
-    fn quad_x1(k: &Self::Q, d: &Self::R1) -> Option<f32> {
-        polygon_x1(k, *d)
+    fn push<M: Kernels>(s: &mut Self::Stores<M>, shape: Shape, id: f32, eye: DVec3) {
+        if shape.kind() != F::KIND {
+            Rest::push::<M>(&mut s.1, shape, id, eye);
+        } else if !M::Own::push::<F>(&mut s.0.own, shape, id, eye)
+            && let Some(k) = F::geometry(shape).and_then(|g| F::setup(&g, eye))
+        {
+            s.0.product.push((F::cast(&k), id));
+        }
     }
     #[inline(always)]
-    fn quad_x8(k: &Self::Q, d: &Self::R8) -> Option<(f32x8, f32x8)> {
-        polygon_x8(k, d)
+    fn x8<M: Kernels>(
+        s: &Self::Stores<M>,
+        d: &[f32x8; 3],
+        r: &mut Option<<M::Rays as Rays>::R8>,
+        hit: &mut Hit8,
+    ) {
+        if M::Own::owns::<F>() {
+            M::Own::x8::<F>(&s.0.own, d, r, hit);
+        } else {
+            for (k, id) in &s.0.product {
+                if let Some((m, t)) = F::hit_lanes(k, d) {
+                    hit.update(m, t, *id);
+                }
+            }
+        }
+        Rest::x8::<M>(&s.1, d, r, hit);
+    }
+    #[inline(always)]
+    fn x1<M: Kernels>(
+        s: &Self::Stores<M>,
+        d: V3<f32>,
+        r: &mut Option<<M::Rays as Rays>::R1>,
+        hit: &mut Hit<f32>,
+    ) {
+        if M::Own::owns::<F>() {
+            M::Own::x1::<F>(&s.0.own, d, r, hit);
+        } else {
+            for (k, id) in &s.0.product {
+                if let Some(t) = F::hit_x1(k, d) {
+                    hit.update(t, *id as i32);
+                }
+            }
+        }
+        Rest::x1::<M>(&s.1, d, r, hit);
     }
 }
 
-/// Edge planes with f32 world-space setup (`methods::world`).
-pub struct EPlaneWorld;
-impl PolyFamily for EPlaneWorld {
-    type T = TriangleK<f32>;
-    type Q = QuadK<f32>;
-    type R1 = V3<f32>;
-    type R8 = [f32x8; 3];
-    fn tri(v: &[DVec3; 3], eye: DVec3) -> Option<Self::T> {
-        world::polygon(v, eye)
-    }
-    fn quad(v: &[DVec3; 4], eye: DVec3) -> Option<Self::Q> {
-        world::polygon(v, eye)
-    }
-    fn ray1(d: V3<f32>) -> Self::R1 {
-        d
-    }
-    fn ray8(d: &[f32x8; 3]) -> Self::R8 {
-        *d
-    }
-    fn tri_x1(k: &Self::T, d: &Self::R1) -> Option<f32> {
-        polygon_x1(k, *d)
-    }
-    #[inline(always)]
-    fn tri_x8(k: &Self::T, d: &Self::R8) -> Option<(f32x8, f32x8)> {
-        polygon_x8(k, d)
-    }
-    fn quad_x1(k: &Self::Q, d: &Self::R1) -> Option<f32> {
-        polygon_x1(k, *d)
-    }
-    #[inline(always)]
-    fn quad_x8(k: &Self::Q, d: &Self::R8) -> Option<(f32x8, f32x8)> {
-        polygon_x8(k, d)
-    }
+/// Family `F`'s primitives for method `M`: lanecast's constants rounded to f32 with their ids
+/// (`product`), or, when `M` re-implements `F`, the constants of its own kernel for `F`, kept
+/// in `own` (which holds one list per own kernel of `M`, the others empty).
+pub struct FamilyStore<F: Family, M: Kernels> {
+    product: Vec<(F::K<f32>, f32)>,
+    own: <M::Own as OwnList<M::Rays>>::Stores,
 }
 
-/// Implements [`PolyFamily`] for a triangle-only method whose quads are two triangles.
-macro_rules! two_triangle_family {
-    ($fam:ident, $k:ident, $r1:ty, $r8:ty, $ray1:expr, $ray8:expr, $x1:ident, $x8:ident) => {
-        impl PolyFamily for $fam {
-            type T = $k<f32>;
-            type Q = [$k<f32>; 2];
-            type R1 = $r1;
-            type R8 = $r8;
-            fn tri(v: &[DVec3; 3], eye: DVec3) -> Option<Self::T> {
-                Some($k::new(v, eye).cast())
-            }
-            fn quad(v: &[DVec3; 4], eye: DVec3) -> Option<Self::Q> {
-                Some(quad_split(v).map(|t| $k::new(&t, eye).cast()))
-            }
-            fn ray1(d: V3<f32>) -> Self::R1 {
-                $ray1(d)
-            }
-            fn ray8(d: &[f32x8; 3]) -> Self::R8 {
-                $ray8(d)
-            }
-            fn tri_x1(k: &Self::T, r: &Self::R1) -> Option<f32> {
-                $x1(k, r)
+/// A method's own kernels ([`Kernels::Own`]): a tuple of [`Own`] kernels sharing per-ray data
+/// `R`, each for a different family, and their primitives' constants with ids.
+pub trait OwnList<R: Rays>: 'static {
+    /// One list of constants and ids per kernel.
+    type Stores: Send + Sync;
+    /// Empty lists.
+    fn stores() -> Self::Stores;
+    /// Whether a kernel of the list re-implements family `F`.
+    fn owns<F: Family>() -> bool;
+    /// Adds `shape` (of family `F`) with its id to the list of the kernel re-implementing `F`,
+    /// unless it covers no pixel from `eye`; false when no kernel re-implements `F`.
+    fn push<F: Family>(s: &mut Self::Stores, shape: Shape, id: f32, eye: DVec3) -> bool;
+    /// The eight rays `d` against the primitives of the kernel re-implementing `F`, computing
+    /// the per-packet data `r` if it is not yet.
+    fn x8<F: Family>(s: &Self::Stores, d: &[f32x8; 3], r: &mut Option<R::R8>, hit: &mut Hit8);
+    /// The ray `d` against the primitives of the kernel re-implementing `F`.
+    fn x1<F: Family>(s: &Self::Stores, d: V3<f32>, r: &mut Option<R::R1>, hit: &mut Hit<f32>);
+}
+
+/// [`OwnList`] for tuples of up to three kernels: the first whose family is `F`.
+macro_rules! own_list {
+    ($($o:ident $i:tt),*) => {
+        impl<R: Rays, $($o: Own<Rays = R>),*> OwnList<R> for ($($o,)*) {
+            type Stores = ($(Vec<($o::K, f32)>,)*);
+            fn stores() -> Self::Stores {
+                Default::default()
             }
             #[inline(always)]
-            fn tri_x8(k: &Self::T, r: &Self::R8) -> Option<(f32x8, f32x8)> {
-                $x8(k, r)
+            fn owns<F: Family>() -> bool {
+                false $(|| $o::Family::KIND == F::KIND)*
             }
-            fn quad_x1(k: &Self::Q, r: &Self::R1) -> Option<f32> {
-                nearer($x1(&k[0], r), $x1(&k[1], r))
+            #[allow(unused_variables)]
+            fn push<F: Family>(s: &mut Self::Stores, shape: Shape, id: f32, eye: DVec3) -> bool {
+                $(
+                    if $o::Family::KIND == F::KIND {
+                        let g = <$o::Family as Family>::geometry(shape);
+                        if let Some(k) = g.and_then(|g| $o::setup(&g, eye)) {
+                            s.$i.push((k, id));
+                        }
+                        return true;
+                    }
+                )*
+                false
             }
             #[inline(always)]
-            fn quad_x8(k: &Self::Q, r: &Self::R8) -> Option<(f32x8, f32x8)> {
-                nearer8($x8(&k[0], r), $x8(&k[1], r))
+            #[allow(unused_variables)]
+            fn x8<F: Family>(s: &Self::Stores, d: &[f32x8; 3], r: &mut Option<R::R8>, hit: &mut Hit8) {
+                $(
+                    if $o::Family::KIND == F::KIND {
+                        if s.$i.is_empty() {
+                            return;
+                        }
+                        let r = r.get_or_insert_with(|| R::ray8(d));
+                        for (k, id) in &s.$i {
+                            if let Some((m, t)) = $o::x8(k, r) {
+                                hit.update(m, t, *id);
+                            }
+                        }
+                        return;
+                    }
+                )*
+            }
+            #[allow(unused_variables)]
+            fn x1<F: Family>(s: &Self::Stores, d: V3<f32>, r: &mut Option<R::R1>, hit: &mut Hit<f32>) {
+                $(
+                    if $o::Family::KIND == F::KIND {
+                        let r = r.get_or_insert_with(|| R::ray1(d));
+                        for (k, id) in &s.$i {
+                            if let Some(t) = $o::x1(k, r) {
+                                hit.update(t, *id as i32);
+                            }
+                        }
+                        return;
+                    }
+                )*
             }
         }
     };
 }
-
-/// Möller–Trumbore (`methods::mt`).
-pub struct Mt;
-fn mt1(k: &MtK<f32>, d: &V3<f32>) -> Option<f32> {
-    mt_x1(k, *d)
-}
-two_triangle_family!(
-    Mt,
-    MtK,
-    V3<f32>,
-    [f32x8; 3],
-    |d| d,
-    |d: &[f32x8; 3]| *d,
-    mt1,
-    mt_x8
-);
-
-/// Woop–Benthin–Wald watertight (`methods::woop`).
-pub struct Watertight;
-two_triangle_family!(
-    Watertight,
-    WoopK,
-    WoopRay<f32>,
-    WoopRay8,
-    woop_ray,
-    WoopRay8::new,
-    woop_x1,
-    woop_x8
-);
-
-/// The seed's plane + determinants (`methods::plane`).
-pub struct Plane;
-fn plane1(k: &PlaneK<f32>, d: &V3<f32>) -> Option<f32> {
-    plane_x1(k, *d)
-}
-two_triangle_family!(
-    Plane,
-    PlaneK,
-    V3<f32>,
-    [f32x8; 3],
-    |d| d,
-    |d: &[f32x8; 3]| *d,
-    plane1,
-    plane_x8
-);
+own_list!();
+own_list!(A 0);
+own_list!(A 0, B 1);
+own_list!(A 0, B 1, C 2);
 
 /// One method's constants for one scene, with the camera's f32 ray tables.
-pub struct Kit<S: SphereFamily, P: PolyFamily> {
-    /// Each sphere's constants and its id as f32, in file order.
-    pub spheres: Vec<(S::K, f32)>,
-    /// Each triangle's constants and id (those the method drops are left out).
-    pub triangles: Vec<(P::T, f32)>,
-    /// Each quad's constants and id (those the method drops are left out).
-    pub quads: Vec<(P::Q, f32)>,
+pub struct Kit<M: Kernels> {
+    /// Each of lanecast's families, in kind order: its primitives' constants and ids, in file
+    /// order (those the kernel drops are left out).
+    stores: <Families as FamilyList>::Stores<M>,
     /// The camera's f32 ray tables, padded to whole 4x2 blocks.
     pub tables: RayTables<f32>,
     /// Image width in pixels.
     pub width: usize,
     /// Image height in pixels.
     pub height: usize,
-    _m: PhantomData<fn() -> (S, P)>,
 }
 
-impl<S: SphereFamily, P: PolyFamily> Kit<S, P> {
+impl<M: Kernels> Kit<M> {
     /// The method's constants for every shape of `scene` seen by `camera` (the setup phase).
     pub fn new(scene: &Scene, camera: &Camera) -> Self {
         let eye = camera.eye;
-        let mut kit = Kit {
-            spheres: Vec::new(),
-            triangles: Vec::new(),
-            quads: Vec::new(),
+        let mut stores = Families::stores::<M>();
+        for (id, shape) in scene.shapes.iter().enumerate() {
+            Families::push::<M>(&mut stores, shape, id as f32, eye);
+        }
+        Kit {
+            stores,
             tables: camera.tables(BW as u32, BH as u32),
             width: camera.width as usize,
             height: camera.height as usize,
-            _m: PhantomData,
-        };
-        for (id, shape) in scene.shapes.iter().enumerate() {
-            let id = id as f32;
-            match shape {
-                Shape::Sphere { center, radius } => {
-                    kit.spheres.push((S::make(center, radius, eye), id))
-                }
-                Shape::Triangle(v) => {
-                    if let Some(k) = P::tri(&v, eye) {
-                        kit.triangles.push((k, id))
-                    }
-                }
-                Shape::Quad(v) => {
-                    if let Some(k) = P::quad(&v, eye) {
-                        kit.quads.push((k, id))
-                    }
-                }
-            }
         }
-        kit
     }
 
     /// Nearest hits of eight rays, folded into `hit`.
     #[inline]
     pub fn trace_x8(&self, d: &[f32x8; 3], hit: &mut Hit8) {
-        for (k, id) in &self.spheres {
-            if let Some((m, t)) = S::x8(k, d) {
-                hit.update(m, t, *id);
-            }
-        }
-        if self.triangles.is_empty() && self.quads.is_empty() {
-            return;
-        }
-        let r = P::ray8(d);
-        for (k, id) in &self.triangles {
-            if let Some((m, t)) = P::tri_x8(k, &r) {
-                hit.update(m, t, *id);
-            }
-        }
-        for (k, id) in &self.quads {
-            if let Some((m, t)) = P::quad_x8(k, &r) {
-                hit.update(m, t, *id);
-            }
-        }
+        Families::x8::<M>(&self.stores, d, &mut None, hit);
     }
 
     /// Nearest hit of one ray.
     pub fn trace_x1(&self, d: V3<f32>) -> Hit<f32> {
         let mut hit = Hit::NONE;
-        for (k, id) in &self.spheres {
-            if let Some(t) = S::x1(k, d) {
-                hit.update(t, *id as i32);
-            }
-        }
-        let r = P::ray1(d);
-        for (k, id) in &self.triangles {
-            if let Some(t) = P::tri_x1(k, &r) {
-                hit.update(t, *id as i32);
-            }
-        }
-        for (k, id) in &self.quads {
-            if let Some(t) = P::quad_x1(k, &r) {
-                hit.update(t, *id as i32);
-            }
-        }
+        Families::x1::<M>(&self.stores, d, &mut None, &mut hit);
         hit
     }
 

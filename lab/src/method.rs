@@ -6,10 +6,7 @@
 //! every primitive, on the calling thread. Those exist to be compared (by this lab's table and
 //! chart, and `lab-render`), not to be fast.
 
-use crate::kits::{
-    EPlane, EPlaneWorld, Kit, Mt, Naive, Oracle, Plane, PolyFamily, SphereFamily, Stable,
-    StableWorld, Watertight,
-};
+use crate::kits::{Kernels, Kit, Mt, Naive, Oracle, Plane, Product, Watertight, WorldF32};
 use lanecast::experimental::render::wide64::Kit64;
 use lanecast::scene::Scene;
 use lanecast::{Accel, Camera, Frame, Options, Precision, Renderer};
@@ -127,12 +124,12 @@ impl Method {
         accel: Accel,
     ) -> Box<dyn MethodRender + 's> {
         match self {
-            Method::Default => Box::new(Kit::<Stable, EPlane>::new(scene, camera)),
-            Method::Mt => Box::new(Kit::<Stable, Mt>::new(scene, camera)),
-            Method::Watertight => Box::new(Kit::<Stable, Watertight>::new(scene, camera)),
-            Method::Plane => Box::new(Kit::<Stable, Plane>::new(scene, camera)),
-            Method::Naive => Box::new(Kit::<Naive, EPlane>::new(scene, camera)),
-            Method::WorldF32 => Box::new(Kit::<StableWorld, EPlaneWorld>::new(scene, camera)),
+            Method::Default => Box::new(Kit::<Product>::new(scene, camera)),
+            Method::Mt => Box::new(Kit::<Mt>::new(scene, camera)),
+            Method::Watertight => Box::new(Kit::<Watertight>::new(scene, camera)),
+            Method::Plane => Box::new(Kit::<Plane>::new(scene, camera)),
+            Method::Naive => Box::new(Kit::<Naive>::new(scene, camera)),
+            Method::WorldF32 => Box::new(Kit::<WorldF32>::new(scene, camera)),
             Method::F64x4 => Box::new(Kit64::with_accel(scene, camera, accel)),
             Method::Auto => {
                 let options = Options {
@@ -197,7 +194,7 @@ impl MethodRender for Renderer<'_> {
     }
 }
 
-impl<S: SphereFamily, P: PolyFamily> MethodRender for Kit<S, P> {
+impl<M: Kernels> MethodRender for Kit<M> {
     fn render(&self) -> Frame<f64> {
         self.render_x8()
     }

@@ -9,19 +9,16 @@ use lanecast::Camera;
 use lanecast::experimental::kernel::polygon::{QuadK, TriangleK, polygon_x1, polygon_x8};
 use lanecast::experimental::kernel::sphere::{SphereK, sphere_x1, sphere_x8};
 use lanecast::experimental::kernel::wide64::{Hit4d, polygon_x4d, sphere_x4d};
-use lanecast::experimental::kernel::{Hit, Hit8};
+use lanecast::experimental::kernel::{Hit, Hit8, Quad};
 use lanecast::experimental::real::V3;
 use lanecast::experimental::render::wide64::Kit64;
-use lanecast_lab::kits::{
-    EPlane, EPlaneWorld, Kit, Mt, Naive, Oracle, Plane, PolyFamily, SphereFamily, Stable,
-    StableWorld, Watertight,
-};
+use lanecast_lab::kits::{Kernels, Kit, Mt, Naive, Oracle, Plane, Product, Watertight, WorldF32};
 use lanecast_lab::measure::{Row, accuracy, method_frame, oracle_frame};
-use lanecast_lab::methods::mt::{MtK, mt_x1, mt_x8};
-use lanecast_lab::methods::plane::{PlaneK, plane_x1, plane_x8};
+use lanecast_lab::methods::mt::{MtK, MtTriangle, mt_x1, mt_x8};
+use lanecast_lab::methods::plane::{PlaneK, PlaneTriangle, plane_x1, plane_x8};
 use lanecast_lab::methods::sphere_naive::{NaiveK, naive_x1, naive_x8};
-use lanecast_lab::methods::woop::{WoopK, WoopRay8, woop_ray, woop_x1, woop_x8};
-use lanecast_lab::methods::world;
+use lanecast_lab::methods::woop::{WoopK, WoopRay8, WoopTriangle, woop_ray, woop_x1, woop_x8};
+use lanecast_lab::methods::{Own, Rays, TwoTriangles, world};
 use lanecast_lab::{LabScene, Method};
 use proptest::prelude::*;
 use std::path::Path;
@@ -255,19 +252,19 @@ fn packet_renders_equal_scalar_renders_with_border_lanes() {
         let mut s = stress(n);
         let fov = s.scene.camera.fov_deg().unwrap_or(60.0);
         s.camera = Camera::new(&s.scene.camera, fov, 37, 11);
-        fn same<S: SphereFamily, P: PolyFamily>(s: &LabScene) {
-            let k = Kit::<S, P>::new(&s.scene, &s.camera);
+        fn same<M: Kernels>(s: &LabScene) {
+            let k = Kit::<M>::new(&s.scene, &s.camera);
             let (a, b) = (k.render_x8(), k.render_x1());
             assert_eq!(a.ids, b.ids);
             let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
             assert_eq!(bits(&a.depth), bits(&b.depth));
         }
-        same::<Stable, EPlane>(&s);
-        same::<Stable, Mt>(&s);
-        same::<Stable, Watertight>(&s);
-        same::<Stable, Plane>(&s);
-        same::<Naive, EPlane>(&s);
-        same::<StableWorld, EPlaneWorld>(&s);
+        same::<Product>(&s);
+        same::<Mt>(&s);
+        same::<Watertight>(&s);
+        same::<Plane>(&s);
+        same::<Naive>(&s);
+        same::<WorldF32>(&s);
         let a = Kit64::new(&s.scene, &s.camera).render();
         let b = Oracle::new(&s.scene, &s.camera).render();
         assert_eq!(a, b, "{n}");
@@ -402,17 +399,16 @@ proptest! {
         let d = rays(&mut r, &v);
         let dd = d8(&d);
         let active = active_mask(&mut r);
-        fn family<P: PolyFamily>(v: &[DVec3; 4], d: &[V3<f32>; 8], dd: &[f32x8; 3], active: ([bool; 8], f32x8)) -> Result<(), TestCaseError> {
-            if let Some(k) = P::quad(v, DVec3::ZERO) {
-                let r8 = P::ray8(dd);
-                check_lanes(P::quad_x8(&k, &r8), |i| P::quad_x1(&k, &P::ray1(d[i])), active)?;
+        fn family<O: Own<Family = Quad>>(v: &[DVec3; 4], d: &[V3<f32>; 8], dd: &[f32x8; 3], active: ([bool; 8], f32x8)) -> Result<(), TestCaseError> {
+            if let Some(k) = O::setup(v, DVec3::ZERO) {
+                let r8 = O::Rays::ray8(dd);
+                check_lanes(O::x8(&k, &r8), |i| O::x1(&k, &O::Rays::ray1(d[i])), active)?;
             }
             Ok(())
         }
-        family::<EPlane>(&v, &d, &dd, active)?;
-        family::<Mt>(&v, &d, &dd, active)?;
-        family::<Watertight>(&v, &d, &dd, active)?;
-        family::<Plane>(&v, &d, &dd, active)?;
+        family::<TwoTriangles<MtTriangle>>(&v, &d, &dd, active)?;
+        family::<TwoTriangles<WoopTriangle>>(&v, &d, &dd, active)?;
+        family::<TwoTriangles<PlaneTriangle>>(&v, &d, &dd, active)?;
         if let Some(k) = QuadK::quad(&v, DVec3::ZERO) {
             let k = k.cast::<f32>();
             check_lanes(polygon_x8(&k, &dd), |i| polygon_x1(&k, d[i]), active)?;

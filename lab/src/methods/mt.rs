@@ -25,8 +25,9 @@
 //! their diagonal. Proven by `tests/stability.rs` (`mt_leaks_through_shared_edges`,
 //! `x8_equals_x1_*`).
 
-use super::{cross, cross8, dot8, splat3, sub};
+use super::{Direction, Own, TwoTriangles, cross, cross8, dot8, splat3, sub};
 use glam::DVec3;
+use lanecast::experimental::kernel::Triangle;
 use lanecast::experimental::real::{Real, V3, dot, v3};
 use wide::f32x8;
 
@@ -116,6 +117,27 @@ pub fn mt_x8(k: &MtK<f32>, d: &[f32x8; 3]) -> Option<(f32x8, f32x8)> {
         return None;
     }
     Some((valid, f32x8::splat(e2q) * inv))
+}
+
+/// The families Möller–Trumbore re-implements: triangles, and quads as two triangles.
+pub type MtOwn = (MtTriangle, TwoTriangles<MtTriangle>);
+
+/// Möller–Trumbore in place of lanecast's triangles: [`MtK`], [`mt_x1`], [`mt_x8`].
+pub struct MtTriangle;
+impl Own for MtTriangle {
+    type Family = Triangle;
+    type Rays = Direction;
+    type K = MtK<f32>;
+    fn setup(v: &[DVec3; 3], eye: DVec3) -> Option<MtK<f32>> {
+        Some(MtK::new(v, eye).cast())
+    }
+    fn x1(k: &MtK<f32>, d: &V3<f32>) -> Option<f32> {
+        mt_x1(k, *d)
+    }
+    #[inline(always)]
+    fn x8(k: &MtK<f32>, d: &[f32x8; 3]) -> Option<(f32x8, f32x8)> {
+        mt_x8(k, d)
+    }
 }
 
 #[cfg(test)]

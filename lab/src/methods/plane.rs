@@ -21,8 +21,9 @@
 //! diagonals); wrong answers when the hit point is far compared with the triangle (P's rounding
 //! exceeds the triangle). Proven by `tests/stability.rs` and the lab's tables.
 
-use super::{cross, cross8, dot8, splat3, sub};
+use super::{Direction, Own, TwoTriangles, cross, cross8, dot8, splat3, sub};
 use glam::DVec3;
+use lanecast::experimental::kernel::Triangle;
 use lanecast::experimental::real::{Real, V3, dot, v3};
 use wide::f32x8;
 
@@ -106,4 +107,27 @@ pub fn plane_x8(k: &PlaneK<f32>, d: &[f32x8; 3]) -> Option<(f32x8, f32x8)> {
         }
     }
     Some((valid, t))
+}
+
+/// The families the plane + determinants test re-implements: triangles, and quads as two
+/// triangles.
+pub type PlaneOwn = (PlaneTriangle, TwoTriangles<PlaneTriangle>);
+
+/// The plane + determinants test in place of lanecast's triangles: [`PlaneK`], [`plane_x1`],
+/// [`plane_x8`].
+pub struct PlaneTriangle;
+impl Own for PlaneTriangle {
+    type Family = Triangle;
+    type Rays = Direction;
+    type K = PlaneK<f32>;
+    fn setup(v: &[DVec3; 3], eye: DVec3) -> Option<PlaneK<f32>> {
+        Some(PlaneK::new(v, eye).cast())
+    }
+    fn x1(k: &PlaneK<f32>, d: &V3<f32>) -> Option<f32> {
+        plane_x1(k, *d)
+    }
+    #[inline(always)]
+    fn x8(k: &PlaneK<f32>, d: &[f32x8; 3]) -> Option<(f32x8, f32x8)> {
+        plane_x8(k, d)
+    }
 }

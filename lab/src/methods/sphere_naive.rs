@@ -17,8 +17,9 @@
 //! absolute. Known to fail: `scenes/stress/far_sphere.sc`, `ground.sc`. Proven by
 //! `tests/stability.rs` (`naive_loses_the_far_sphere_in_f32`).
 
-use super::{dot8, splat3};
+use super::{Direction, Own, dot8, splat3};
 use glam::DVec3;
+use lanecast::experimental::kernel::Sphere;
 use lanecast::experimental::real::{Real, V3, dot, v3};
 use wide::f32x8;
 
@@ -86,4 +87,26 @@ pub fn naive_x8(k: &NaiveK<f32>, d: &[f32x8; 3]) -> Option<(f32x8, f32x8)> {
     let near = (-b - sq) / two_a;
     let far = (-b + sq) / two_a;
     Some((meets, near.simd_gt(zero).select(near, far)))
+}
+
+/// The families the textbook quadratic re-implements: spheres.
+pub type NaiveOwn = (NaiveSphere,);
+
+/// The textbook quadratic in place of lanecast's spheres: [`NaiveK`], [`naive_x1`],
+/// [`naive_x8`].
+pub struct NaiveSphere;
+impl Own for NaiveSphere {
+    type Family = Sphere;
+    type Rays = Direction;
+    type K = NaiveK<f32>;
+    fn setup(&(center, radius): &(DVec3, f64), eye: DVec3) -> Option<NaiveK<f32>> {
+        Some(NaiveK::new(center, radius, eye).cast())
+    }
+    fn x1(k: &NaiveK<f32>, d: &V3<f32>) -> Option<f32> {
+        naive_x1(k, *d)
+    }
+    #[inline(always)]
+    fn x8(k: &NaiveK<f32>, d: &[f32x8; 3]) -> Option<(f32x8, f32x8)> {
+        naive_x8(k, d)
+    }
 }

@@ -34,8 +34,9 @@
 //! place relative to the eye (size < ~u * distance) is mis-hit like in every f32 method. Proven
 //! by `tests/stability.rs` (`watertight_leaves_no_holes`, `x8_equals_x1_*`).
 
-use super::abs;
+use super::{Own, Rays, TwoTriangles, abs};
 use glam::DVec3;
+use lanecast::experimental::kernel::Triangle;
 use lanecast::experimental::real::{Real, V3, v3};
 use wide::f32x8;
 
@@ -228,6 +229,41 @@ pub fn woop_x8(k: &WoopK<f32>, r: &WoopRay8) -> Option<(f32x8, f32x8)> {
     let (az, bz, cz) = (sz * az0, sz * bz0, sz * cz0);
     let tt = u * az + v * bz + w * cz;
     Some((valid, tt * (f32x8::ONE / det)))
+}
+
+/// The rays in ray space, per ray ([`woop_ray`]) and per packet ([`WoopRay8`]): the per-ray data
+/// of the watertight kernels.
+pub struct WoopRays;
+impl Rays for WoopRays {
+    type R1 = WoopRay<f32>;
+    type R8 = WoopRay8;
+    fn ray1(d: V3<f32>) -> WoopRay<f32> {
+        woop_ray(d)
+    }
+    fn ray8(d: &[f32x8; 3]) -> WoopRay8 {
+        WoopRay8::new(d)
+    }
+}
+
+/// The families the watertight test re-implements: triangles, and quads as two triangles.
+pub type WoopOwn = (WoopTriangle, TwoTriangles<WoopTriangle>);
+
+/// The watertight test in place of lanecast's triangles: [`WoopK`], [`woop_x1`], [`woop_x8`].
+pub struct WoopTriangle;
+impl Own for WoopTriangle {
+    type Family = Triangle;
+    type Rays = WoopRays;
+    type K = WoopK<f32>;
+    fn setup(v: &[DVec3; 3], eye: DVec3) -> Option<WoopK<f32>> {
+        Some(WoopK::new(v, eye).cast())
+    }
+    fn x1(k: &WoopK<f32>, r: &WoopRay<f32>) -> Option<f32> {
+        woop_x1(k, r)
+    }
+    #[inline(always)]
+    fn x8(k: &WoopK<f32>, r: &WoopRay8) -> Option<(f32x8, f32x8)> {
+        woop_x8(k, r)
+    }
 }
 
 #[cfg(test)]

@@ -12,11 +12,14 @@
 //! negated normals (the same two rounded vectors), so the leaks are at shared vertices. Known to fail:
 //! `scenes/stress/translated.sc`, `ground.sc`. Measured by the lab (`world-f32` rows).
 
-use super::{cross, sub};
+use super::{Direction, Own, cross, sub};
 use glam::DVec3;
-use lanecast::experimental::kernel::polygon::PolyK;
-use lanecast::experimental::kernel::sphere::SphereK;
+use lanecast::experimental::kernel::polygon::{PolyK, polygon_x1, polygon_x8};
+use lanecast::experimental::kernel::sphere::{SphereK, sphere_x1, sphere_x8};
+use lanecast::experimental::kernel::{Family, Quad, Sphere, Triangle};
 use lanecast::experimental::real::{V3, dot, v3};
+use std::marker::PhantomData;
+use wide::f32x8;
 
 /// Sphere constants computed in f32 from f32 world coordinates.
 pub fn sphere(center: DVec3, radius: f64, eye: DVec3) -> SphereK<f32> {
@@ -61,4 +64,49 @@ pub fn polygon<const N: usize>(v: &[DVec3; N], eye: DVec3) -> Option<PolyK<f32, 
     let n = std::array::from_fn(|i| unit(cross(rel[i], rel[(i + 1) % N])).map(|c| c * s));
     let finite = p.is_finite() && nrm.iter().all(|c| c.is_finite());
     (p > 0.0 && finite).then_some(PolyK { n, nrm, p })
+}
+
+/// The families whose constants this setup computes (each through lanecast's kernel): spheres,
+/// triangles, quads.
+pub type WorldOwn = (
+    WorldSphere,
+    WorldPolygon<Triangle, 3>,
+    WorldPolygon<Quad, 4>,
+);
+
+/// lanecast's stable sphere kernel with the constants of [`sphere`].
+pub struct WorldSphere;
+impl Own for WorldSphere {
+    type Family = Sphere;
+    type Rays = Direction;
+    type K = SphereK<f32>;
+    fn setup(&(center, radius): &(DVec3, f64), eye: DVec3) -> Option<SphereK<f32>> {
+        Some(sphere(center, radius, eye))
+    }
+    fn x1(k: &SphereK<f32>, d: &V3<f32>) -> Option<f32> {
+        sphere_x1(k, *d)
+    }
+    #[inline(always)]
+    fn x8(k: &SphereK<f32>, d: &[f32x8; 3]) -> Option<(f32x8, f32x8)> {
+        sphere_x8(k, d)
+    }
+}
+
+/// lanecast's edge-plane kernel with the constants of [`polygon`], for family `F`, whose
+/// primitives are `N`-edge polygons.
+pub struct WorldPolygon<F, const N: usize>(PhantomData<F>);
+impl<F: Family<Geometry = [DVec3; N]>, const N: usize> Own for WorldPolygon<F, N> {
+    type Family = F;
+    type Rays = Direction;
+    type K = PolyK<f32, N>;
+    fn setup(v: &[DVec3; N], eye: DVec3) -> Option<PolyK<f32, N>> {
+        polygon(v, eye)
+    }
+    fn x1(k: &PolyK<f32, N>, d: &V3<f32>) -> Option<f32> {
+        polygon_x1(k, *d)
+    }
+    #[inline(always)]
+    fn x8(k: &PolyK<f32, N>, d: &[f32x8; 3]) -> Option<(f32x8, f32x8)> {
+        polygon_x8(k, d)
+    }
 }
