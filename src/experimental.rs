@@ -99,7 +99,7 @@ pub mod shade {
 /// Primitives prepared for the kernels: f64/f32 constant records and f32 SoA columns, and the
 /// loops over them.
 pub mod soa {
-    pub use crate::soa::{Packed, Prepared};
+    pub use crate::soa::{Families, Packed, Prepared};
 
     /// The loops over a store: one ray against every primitive (the f64 oracle's loop).
     pub mod trace {

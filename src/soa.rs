@@ -240,6 +240,11 @@ macro_rules! for_each_family {
 }
 pub(crate) use for_each_family;
 
+/// The registration's families in kind order as one type, the list `(F, (G, ... ()))`: for
+/// loops written over a type outside the crate (the lab's drivers), which `for_each_family!`
+/// cannot reach. Kept in the order of `for_each_family!`.
+pub type Families = (Sphere, (Triangle, (Quad, ())));
+
 /// The registration's families by kind at run time: `with_family!(kind, F => expr)` evaluates
 /// `expr` with `F` naming the family whose `Family::KIND` is `kind` (a kind tag read from a
 /// structure: the BVH's leaves, the tiles' entries). Kinds past the last are the last.

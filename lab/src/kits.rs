@@ -16,17 +16,15 @@
 //! takes the accelerations and every thread, is lanecast's `render::wide64::Kit64`
 //! (`--precision f64`).
 
-mod families;
-
 use crate::methods::{
     Direction, MtOwn, NaiveOwn, Own, PlaneOwn, Rays, WoopOwn, WoopRays, WorldOwn,
 };
-use families::Families;
 use glam::DVec3;
 use lanecast::experimental::camera::RayTables;
 use lanecast::experimental::kernel::packet::block_rays;
 use lanecast::experimental::kernel::{Family, Hit, Hit8, LANES};
 use lanecast::experimental::real::V3;
+use lanecast::experimental::soa::Families;
 use lanecast::experimental::soa::Prepared;
 use lanecast::experimental::soa::trace::trace_x1;
 use lanecast::scene::{Scene, Shape};
