@@ -66,10 +66,56 @@ pub trait Family: 'static {
     /// The unit f64 normal facing the eye at the hit `point` of `g` seen from `eye`, and
     /// whether it is the same for every hit of that primitive (a flat one).
     fn normal(g: &Self::Geometry, eye: DVec3, point: DVec3) -> (DVec3, bool);
+
+    // For the world engine (`--accel world`), which draws a family of convex polygons from
+    // their vertices and any other family through a bounding sphere.
+
+    /// `class.polygon()` when the family is a [`Polygon`] (with its edge count), else
+    /// `class.bounded()` ([`Bounded`]): which of the world engine's two ways draws it.
+    fn class<C: Class<Self>>(class: C) -> C::Out
+    where
+        Self: Sized;
 }
 
 /// `n` normalised and turned to face the eye, from which a point of the plane lies at `rel`.
 pub(crate) fn facing(n: DVec3, rel: DVec3) -> DVec3 {
     let n = n.normalize_or_zero();
     if n.dot(rel) > 0.0 { -n } else { n }
+}
+
+// For the world engine (`--accel world`): the two classes of family it draws, and how it
+// learns a family's ([`Family::class`]).
+
+/// Something done to a family as the member of its class ([`Family::class`] calls the one
+/// method that applies): a polygon family with its edge count, or a bounded one.
+pub trait Class<F: Family> {
+    /// What either method returns.
+    type Out;
+    /// Done to `F`, a convex polygon family of `N` edges.
+    fn polygon<const N: usize>(self) -> Self::Out
+    where
+        F: Polygon<N>;
+    /// Done to `F`, a family drawn through a bounding sphere.
+    fn bounded(self) -> Self::Out
+    where
+        F: Bounded;
+}
+
+/// A family of convex polygons with `N` edges, each given by its vertices in perimeter order:
+/// the world engine (`--accel world`) projects the vertices, bins and clusters the polygons,
+/// and computes their f32 edge planes itself, then decides again in f64 with
+/// [`Family::setup`] and [`Family::hit_x1`].
+pub trait Polygon<const N: usize>: Family<Geometry = [DVec3; N]> {
+    /// `[a, b, c, d]`: the family's raw normal (any length, either orientation) is
+    /// `(V_a - V_b) x (V_c - V_d)`, as its kernel computes it: the world's f32 setup, its
+    /// shape factor, its clusters' normal cones and its 2D outlines take the same two vectors.
+    const NORMAL: [usize; 4];
+}
+
+/// A family the world engine (`--accel world`) draws through a bounding sphere: binned by the
+/// sphere's pixel box, tested in f32 with [`Family::hit_x1`] at every pixel of that box, and
+/// decided again in f64 ([`Family::setup`], [`Family::hit_x1`]) wherever it may cover.
+pub trait Bounded: Family {
+    /// A sphere holding every point of `g`: centre and radius, f64.
+    fn bound(g: &Self::Geometry) -> (DVec3, f64);
 }

@@ -240,6 +240,13 @@ impl Family for Triangle {
     fn normal(&[a, b, c]: &[DVec3; 3], eye: DVec3, _: DVec3) -> (DVec3, bool) {
         (facing((b - a).cross(c - a), a - eye), true)
     }
+
+    // For the world engine (`--accel world`).
+
+    /// A convex polygon of 3 edges.
+    fn class<C: crate::kernel::family::Class<Triangle>>(class: C) -> C::Out {
+        class.polygon::<3>()
+    }
 }
 
 impl Family for Quad {
@@ -281,6 +288,13 @@ impl Family for Quad {
     /// The diagonals' cross product `(C - A) x (D - B)`, turned to the eye.
     fn normal(&[a, b, c, d]: &[DVec3; 4], eye: DVec3, _: DVec3) -> (DVec3, bool) {
         (facing((c - a).cross(d - b), a - eye), true)
+    }
+
+    // For the world engine (`--accel world`).
+
+    /// A convex polygon of 4 edges.
+    fn class<C: crate::kernel::family::Class<Quad>>(class: C) -> C::Out {
+        class.polygon::<4>()
     }
 }
 
@@ -355,6 +369,19 @@ fn edge_inside<L: Lanes, const N: usize>(k: &PolyK<L::Scalar, N>, e: usize, d: &
 #[inline(always)]
 fn plane_t<L: Lanes, const N: usize>(k: &PolyK<L::Scalar, N>, d: &[L; 3]) -> L {
     L::splat(k.p) / dot_splat(&k.nrm, d)
+}
+
+// For the world engine (`--accel world`): the raw normals of `TriangleK::triangle` and
+// `QuadK::quad`, as vertex indices.
+
+/// `(B - A) x (C - A)`.
+impl crate::kernel::family::Polygon<3> for Triangle {
+    const NORMAL: [usize; 4] = [1, 0, 2, 0];
+}
+
+/// The diagonals' `(C - A) x (D - B)`.
+impl crate::kernel::family::Polygon<4> for Quad {
+    const NORMAL: [usize; 4] = [2, 0, 3, 1];
 }
 
 #[cfg(test)]

@@ -130,6 +130,23 @@ impl Family for Sphere {
         let inside = (eye - center).length() < radius;
         (if inside { -out } else { out }, false)
     }
+
+    // For the world engine (`--accel world`).
+
+    /// Drawn through its bounding sphere ([`Bounded`](crate::kernel::family::Bounded)).
+    fn class<C: crate::kernel::family::Class<Sphere>>(class: C) -> C::Out {
+        class.bounded()
+    }
+}
+
+// For the world engine (`--accel world`).
+
+/// A sphere's bounding sphere is itself.
+impl crate::kernel::family::Bounded for Sphere {
+    #[inline(always)]
+    fn bound(&(center, radius): &(DVec3, f64)) -> (DVec3, f64) {
+        (center, radius)
+    }
 }
 
 /// Distance to the first hit along unit direction `d`, when it is ahead of the eye.

@@ -10,6 +10,7 @@
 //! open mesh a back face can be seen, so the view renders it unless it proves it hidden
 //! (`raster`).
 
+use crate::kernel::family::Polygon;
 use crate::par::prelude::*;
 use glam::DVec3;
 
@@ -34,67 +35,97 @@ pub struct Cluster {
     pub alpha: f64,
 }
 
-/// Puts the polygons in spatial order (the Morton order of their centroids in the scene's
-/// box, 21 bits an axis), so that each run of [`CLUSTER`] polygons lies together, whatever
-/// order the file gave them in; then numbers the vertices in the order the polygons first use
-/// them, so that a view reads them as it reads the polygons. Parallel; deterministic.
-pub fn sort(
-    verts: &mut Vec<DVec3>,
-    tris: &mut Vec<[u32; 3]>,
-    tri_ids: &mut Vec<i32>,
-    quads: &mut Vec<[u32; 4]>,
-    quad_ids: &mut Vec<i32>,
-) {
-    let (lo, hi) = verts.par_iter().map(|&p| (p, p)).reduce(
-        || (DVec3::INFINITY, DVec3::NEG_INFINITY),
-        |a, b| (a.0.min(b.0), a.1.max(b.1)),
-    );
-    let scale = DVec3::splat(((1u64 << 21) - 1) as f64) / (hi - lo).max(DVec3::splat(1e-300));
-    let key = |c: DVec3| -> u64 {
-        let q = ((c - lo) * scale).clamp(DVec3::ZERO, DVec3::splat(((1u64 << 21) - 1) as f64));
+/// The Morton order of points in a box, 21 bits an axis: the order [`order`] puts polygons in.
+pub struct Morton {
+    lo: DVec3,
+    scale: DVec3,
+}
+
+impl Morton {
+    /// The order in the box of `verts` (every polygon vertex of the scene).
+    pub fn new(verts: &[DVec3]) -> Morton {
+        let (lo, hi) = verts.par_iter().map(|&p| (p, p)).reduce(
+            || (DVec3::INFINITY, DVec3::NEG_INFINITY),
+            |a, b| (a.0.min(b.0), a.1.max(b.1)),
+        );
+        let scale = DVec3::splat(((1u64 << 21) - 1) as f64) / (hi - lo).max(DVec3::splat(1e-300));
+        Morton { lo, scale }
+    }
+
+    /// The key of `c`: its coordinates in the box, quantised and interleaved.
+    fn key(&self, c: DVec3) -> u64 {
+        let q = ((c - self.lo) * self.scale)
+            .clamp(DVec3::ZERO, DVec3::splat(((1u64 << 21) - 1) as f64));
         spread(q.x as u64) | (spread(q.y as u64) << 1) | (spread(q.z as u64) << 2)
-    };
-    fn order<const N: usize>(
-        polys: &mut Vec<[u32; N]>,
-        ids: &mut Vec<i32>,
-        verts: &[DVec3],
-        key: &(dyn Fn(DVec3) -> u64 + Sync),
-    ) {
-        let mut keyed: Vec<(u64, u32)> = polys
-            .par_iter()
-            .enumerate()
-            .map(|(i, p)| {
-                let c = p.iter().map(|&v| verts[v as usize]).sum::<DVec3>() / N as f64;
-                (key(c), i as u32)
-            })
-            .collect();
-        keyed.par_sort_unstable();
-        *polys = keyed.par_iter().map(|&(_, i)| polys[i as usize]).collect();
-        *ids = keyed.par_iter().map(|&(_, i)| ids[i as usize]).collect();
     }
-    order(tris, tri_ids, verts, &key);
-    order(quads, quad_ids, verts, &key);
-    // vertices in the order of first use
+}
+
+/// Puts the polygons `idx` (`N` vertex indices each, into `verts`) and their `ids` in spatial
+/// order (the Morton order of their centroids), so that each run of [`CLUSTER`] polygons lies
+/// together, whatever order the file gave them in. Parallel; deterministic.
+pub fn order<const N: usize>(
+    idx: &mut Vec<u32>,
+    ids: &mut Vec<i32>,
+    verts: &[DVec3],
+    morton: &Morton,
+) {
+    let polys = idx.as_chunks::<N>().0;
+    let mut keyed: Vec<(u64, u32)> = polys
+        .par_iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let c = p.iter().map(|&v| verts[v as usize]).sum::<DVec3>() / N as f64;
+            (morton.key(c), i as u32)
+        })
+        .collect();
+    keyed.par_sort_unstable();
+    let sorted: Vec<[u32; N]> = keyed.par_iter().map(|&(_, i)| polys[i as usize]).collect();
+    *idx = sorted.into_flattened();
+    *ids = keyed.par_iter().map(|&(_, i)| ids[i as usize]).collect();
+}
+
+/// The vertices renumbered in the order the polygons first use them, so that a view reads
+/// them as it reads the polygons: [`Renumber::polygons`] over each family's vertex indices in
+/// turn, then [`Renumber::vertices`]. Vertices no polygon uses are dropped.
+pub struct Renumber {
+    map: Vec<u32>,
+    next: u32,
+}
+
+impl Renumber {
     const NONE: u32 = u32::MAX;
-    let mut map = vec![NONE; verts.len()];
-    let mut next = 0u32;
-    let mut renumber = |v: &mut u32| {
-        let m = &mut map[*v as usize];
-        if *m == NONE {
-            *m = next;
-            next += 1;
-        }
-        *v = *m;
-    };
-    tris.iter_mut().flatten().for_each(&mut renumber);
-    quads.iter_mut().flatten().for_each(&mut renumber);
-    let mut out = vec![DVec3::ZERO; next as usize];
-    for (v, &m) in verts.iter().zip(&map) {
-        if m != NONE {
-            out[m as usize] = *v;
+
+    /// Nothing renumbered yet, of `n` vertices.
+    pub fn new(n: usize) -> Renumber {
+        Renumber {
+            map: vec![Self::NONE; n],
+            next: 0,
         }
     }
-    *verts = out;
+
+    /// Vertex indices `idx` rewritten to the new numbers, a vertex first met here taking the
+    /// next one.
+    pub fn polygons(&mut self, idx: &mut [u32]) {
+        for v in idx {
+            let m = &mut self.map[*v as usize];
+            if *m == Self::NONE {
+                *m = self.next;
+                self.next += 1;
+            }
+            *v = *m;
+        }
+    }
+
+    /// `verts` in the new order.
+    pub fn vertices(self, verts: &[DVec3]) -> Vec<DVec3> {
+        let mut out = vec![DVec3::ZERO; self.next as usize];
+        for (v, &m) in verts.iter().zip(&self.map) {
+            if m != Self::NONE {
+                out[m as usize] = *v;
+            }
+        }
+        out
+    }
 }
 
 /// The bits of `x` (21 of them) spread to every third bit.
@@ -108,9 +139,11 @@ fn spread(x: u64) -> u64 {
     x
 }
 
-/// The clusters of `polys` (vertex indices into `verts`), `CLUSTER` consecutive ones each.
-pub fn build<const N: usize>(verts: &[DVec3], polys: &[[u32; N]]) -> Vec<Cluster> {
-    polys
+/// The clusters of the polygons `idx` of family `P` (`N` vertex indices each, into `verts`),
+/// `CLUSTER` consecutive ones each.
+pub fn build<P: Polygon<N>, const N: usize>(verts: &[DVec3], idx: &[u32]) -> Vec<Cluster> {
+    let [n0, n1, n2, n3] = P::NORMAL;
+    (idx.as_chunks::<N>().0)
         .par_chunks(CLUSTER)
         .enumerate()
         .map(|(c, chunk)| {
@@ -128,12 +161,7 @@ pub fn build<const N: usize>(verts: &[DVec3], polys: &[[u32; N]]) -> Vec<Cluster
                 .iter()
                 .map(|p| {
                     let v = p.map(|i| verts[i as usize]);
-                    let raw = if N == 3 {
-                        (v[1] - v[0]).cross(v[2] - v[0])
-                    } else {
-                        (v[2] - v[0]).cross(v[3] - v[1])
-                    };
-                    raw.try_normalize()
+                    (v[n0] - v[n1]).cross(v[n2] - v[n3]).try_normalize()
                 })
                 .collect();
             let (axis, alpha) = match normals.iter().copied().collect::<Option<Vec<_>>>() {

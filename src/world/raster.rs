@@ -1,14 +1,14 @@
 //! A view's pixel work: projection and boxes, then each band's f32 pass and its f64 re-decisions.
 
 use super::clusters::Cluster;
-use super::setup::{self, Basis, Class, EPS_MAX, Poly};
-use super::{BAND, Item, Precision, Scratch, T_TIGHT, World};
+use super::setup::{self, Basis, EPS_MAX, Poly};
+use super::{BAND, Item, Others, Polys, Precision, Scratch, T_TIGHT, World};
 use crate::camera::{Camera, RayTables};
 use crate::frame::Frame;
-use crate::kernel::Hit;
-use crate::kernel::polygon::{PolyK, polygon_x1};
-use crate::kernel::sphere::{SphereK, sphere_x1};
+use crate::kernel::family::{Bounded, Class, Polygon};
+use crate::kernel::{Family, Hit};
 use crate::par::prelude::*;
+use crate::soa::with_family;
 use glam::DVec3;
 
 /// What every pass of one view reads: the camera, its f32 and f64 ray tables, its basis.
@@ -196,8 +196,9 @@ impl View {
         )
     }
 
-    /// The pixel box of a sphere: interval bounds on `sx` and `sy` over its bounding cube.
-    pub fn sphere_box(&self, c: DVec3, r: f64) -> Option<[u16; 4]> {
+    /// The pixel box of a ball (a cluster's or a primitive's bounding sphere, centre `c`,
+    /// radius `r`): interval bounds on `sx` and `sy` over its bounding cube.
+    pub fn ball_box(&self, c: DVec3, r: f64) -> Option<[u16; 4]> {
         let oc = c - self.eye;
         let (f, rr, u) = (self.t64.f, self.t64.r, self.t64.u);
         let d = |a: [f64; 3]| oc.x * a[0] + oc.y * a[1] + oc.z * a[2];
@@ -239,17 +240,18 @@ pub(crate) struct Band {
     loose: Vec<f32>,
     /// Re-decided in f64 whatever the f32 answer.
     flag: Vec<bool>,
-    /// The polygons (vertex indices, 3 or 4, and id) and spheres whose test ran at some pixel
-    /// of the band, with their boxes: every primitive the oracle may hit here (the outline
-    /// test leaves out only pixels no primitive's exact test accepts, and a polygon is passed
-    /// over only where a trusted nearer hit is proven, [`hidden`]).
-    polys: Vec<([u32; 4], u8, i32, [u16; 4])>,
-    spheres: Vec<(DVec3, f64, i32, [u16; 4])>,
+    /// The polygons, then the primitives of bounded families, whose test ran at some pixel of
+    /// the band, each as its family's kind, its index in that family's store, its id and its
+    /// box: every primitive the oracle may hit here (the outline test leaves out only pixels
+    /// no primitive's exact test accepts, and a polygon is passed over only where a trusted
+    /// nearer hit is proven, [`hidden`]).
+    polys: Vec<(u8, u32, i32, [u16; 4])>,
+    others: Vec<(u8, u32, i32, [u16; 4])>,
     /// The front items, nearest first.
     front: Vec<(f64, u32)>,
     /// Polygons facing away from the eye, waiting for every polygon facing it: (index in its
-    /// kind's arrays, quad).
-    waiting: Vec<(u32, bool)>,
+    /// family's store, kind).
+    waiting: Vec<(u32, u8)>,
     /// Each flagged pixel's nearest f64 hit and oracle ray.
     best: Vec<(Hit<f64>, [f64; 3])>,
 }
@@ -270,7 +272,7 @@ impl Band {
         self.flag.clear();
         self.flag.resize(n, flag);
         self.polys.clear();
-        self.spheres.clear();
+        self.others.clear();
         self.front.clear();
         self.waiting.clear();
     }
@@ -335,8 +337,8 @@ fn band(
     st.reset(w, b, rows, precision == Precision::F64);
     for e in s.bins.iter().flat_map(|c| c[b].iter()).filter(|e| !e.1) {
         let near = match world.item(e.0 as usize) {
-            Item::Tris(k) | Item::Quads(k) => k.nearest(view.eye),
-            Item::Sphere(..) => f64::NEG_INFINITY,
+            Item::Cluster(_, _, k) => k.nearest(view.eye),
+            Item::Bounded(..) => f64::NEG_INFINITY,
         };
         st.front.push((near, e.0));
     }
@@ -344,47 +346,24 @@ fn band(
         .sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
     let front = std::mem::take(&mut st.front);
     for &(_, i) in &front {
-        match world.item(i as usize) {
-            Item::Tris(k) if !hidden(&k, view, st) => {
-                for p in k.first..k.first + k.len {
-                    let i = p as usize;
-                    let (v, id, g) = (world.tris[i], world.tri_ids[i], world.tri_shape[i]);
-                    raster_polygon(v, id, g, Some((p, false)), (view, &world.verts), s, st);
-                }
-            }
-            Item::Quads(k) if !hidden(&k, view, st) => {
-                for p in k.first..k.first + k.len {
-                    let i = p as usize;
-                    let (v, id, g) = (world.quads[i], world.quad_ids[i], world.quad_shape[i]);
-                    raster_polygon(v, id, g, Some((p, true)), (view, &world.verts), s, st);
-                }
-            }
-            Item::Sphere(c, r, id) => raster_sphere(c, r, id, view, st),
-            _ => {}
-        }
+        let (kind, j) = match world.item(i as usize) {
+            Item::Cluster(kind, j, _) | Item::Bounded(kind, j, ..) => (kind, j),
+        };
+        with_family!(kind, F => F::class(Front { world, j, view, s, st }));
     }
     st.front = front;
     for e in s.bins.iter().flat_map(|c| c[b].iter()).filter(|e| e.1) {
-        let (quad, k) = match world.item(e.0 as usize) {
-            Item::Tris(k) => (false, k),
-            Item::Quads(k) => (true, k),
-            Item::Sphere(..) => unreachable!("only clusters are deferred"),
+        let Item::Cluster(kind, _, k) = world.item(e.0 as usize) else {
+            unreachable!("only clusters are deferred")
         };
-        if !hidden(&k, view, st) {
+        if !hidden(k, view, st) {
             st.waiting
-                .extend((k.first..k.first + k.len).map(|p| (p, quad)));
+                .extend((k.first..k.first + k.len).map(|p| (p, kind as u8)));
         }
     }
     let waiting = std::mem::take(&mut st.waiting);
-    for &(p, quad) in &waiting {
-        let i = p as usize;
-        if quad {
-            let (v, id, g) = (world.quads[i], world.quad_ids[i], world.quad_shape[i]);
-            raster_polygon(v, id, g, None, (view, &world.verts), s, st);
-        } else {
-            let (v, id, g) = (world.tris[i], world.tri_ids[i], world.tri_shape[i]);
-            raster_polygon(v, id, g, None, (view, &world.verts), s, st);
-        }
+    for &(p, kind) in &waiting {
+        with_family!(kind as usize, F => F::class(Waiting { world, p, view, s, st }));
     }
     st.waiting = waiting;
     // Which pixels the f32 answer is not trusted at.
@@ -410,13 +389,19 @@ fn band(
             };
             (Hit::<f64>::NONE, d)
         }));
-        for &(v, n, id, bx) in &st.polys {
-            redecide_polygon(world, v, n, id, bx, view, st, &mut best);
-        }
-        for &(c, r, id, bx) in &st.spheres {
+        for &(kind, j, id, bx) in st.polys.iter().chain(&st.others) {
             if flagged(bx, st) {
-                let k = SphereK::new(c, r, view.eye);
-                redecide_box(bx, id, st, &mut best, |d| sphere_x1(&k, d));
+                let (j, best) = (j as usize, &mut best[..]);
+                let again = Redecide {
+                    world,
+                    j,
+                    id,
+                    bx,
+                    view,
+                    st,
+                    best,
+                };
+                with_family!(kind as usize, F => F::class(again));
             }
         }
     }
@@ -462,7 +447,7 @@ fn proven_nearer(st: &Band, view: &View, x: usize, y: usize, j: usize, near: f64
 /// Whether cluster `k` is proven hidden in this band: every pixel of its box (in the band)
 /// holds a proven nearer hit than the cluster's nearest point.
 fn hidden(k: &Cluster, view: &View, st: &Band) -> bool {
-    let Some(bx) = view.sphere_box(k.centre, k.radius) else {
+    let Some(bx) = view.ball_box(k.centre, k.radius) else {
         return true;
     };
     let near = k.nearest(view.eye);
@@ -501,12 +486,13 @@ fn nearest<const N: usize>(a: &[[f32; 3]; N]) -> f64 {
 /// then runs at every pixel of the box).
 const OUTLINE_MAX: usize = 64;
 
-/// The pixels of the band inside polygon `p`'s projected outline, widened by `margin` pixels
-/// (plus the projection's own rounding), as offsets into the band; `None` when the outline
-/// test does not apply (a vertex near or behind the eye plane, a box past [`OUTLINE_MAX`]
-/// pixels, an outline of no area).
+/// The pixels of the band inside the projected outline `p` of a polygon of family `P`, widened
+/// by `margin` pixels (plus the projection's own rounding), as offsets into the band; `None`
+/// when the outline test does not apply (a vertex near or behind the eye plane, a box past
+/// [`OUTLINE_MAX`] pixels, an outline of no area). The outline's orientation is the sign of
+/// the 2D cross product of the two vectors of its raw normal (`Polygon::NORMAL`).
 #[inline(always)]
-fn outline<const N: usize>(
+fn outline<P: Polygon<N>, const N: usize>(
     p: &[[f32; 3]; N],
     bx: [u16; 4],
     view: &View,
@@ -520,11 +506,9 @@ fn outline<const N: usize>(
     {
         return None;
     }
-    let area = if N == 3 {
-        (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0])
-    } else {
-        (p[2][0] - p[0][0]) * (p[3][1] - p[1][1]) - (p[2][1] - p[0][1]) * (p[3][0] - p[1][0])
-    };
+    let [i, j, k, l] = P::NORMAL;
+    let area =
+        (p[i][0] - p[j][0]) * (p[k][1] - p[l][1]) - (p[i][1] - p[j][1]) * (p[k][0] - p[l][0]);
     if !(area != 0.0 && area.is_finite()) {
         return None;
     }
@@ -561,20 +545,23 @@ fn outline<const N: usize>(
 /// operations.
 const OUTLINE_REL: f32 = 2e-6;
 
-/// Polygon `v` (id `id`, shape factor `g`) in this band. In the front pass (`front` names the
-/// polygon: its index and whether it is a quad) a polygon facing away from the eye waits
-/// ([`band`]); a waiting polygon (`front` is `None`) is passed over when every pixel it may
-/// cover holds a proven nearer hit.
+/// Polygon `i` of `polys`, of family `P`, in this band. In the front pass (`front`) a polygon
+/// facing away from the eye waits ([`band`]); a waiting polygon (not `front`) is passed over
+/// when every pixel it may cover holds a proven nearer hit.
 #[inline(always)]
-fn raster_polygon<const N: usize>(
-    v: [u32; N],
-    id: i32,
-    g: f32,
-    front: Option<(u32, bool)>,
+fn raster_polygon<P: Polygon<N>, const N: usize>(
+    polys: &Polys,
+    i: u32,
+    front: bool,
     (view, verts): (&View, &[DVec3]),
     s: &Scratch,
     st: &mut Band,
 ) {
+    let (v, id, g) = (
+        polys.vertices::<N>(i as usize),
+        polys.ids[i as usize],
+        polys.shape[i as usize],
+    );
     let p = v.map(|i| s.proj[i as usize]);
     // most polygons of a cluster that reaches into this band lie outside it: their rows first
     // (NaN rows, from vertices behind the eye, pass on to the full box test)
@@ -589,10 +576,8 @@ fn raster_polygon<const N: usize>(
         return;
     }
     let a = v.map(|i| s.rel[i as usize]);
-    if let Some(me) = front
-        && setup::faces_away(&a)
-    {
-        st.waiting.push(me);
+    if front && setup::faces_away::<P, N>(&a) {
+        st.waiting.push((i, P::KIND as u8));
         return;
     }
     let Some(bx) = view.polygon_box(p, || v.map(|i| verts[i as usize])) else {
@@ -602,11 +587,11 @@ fn raster_polygon<const N: usize>(
         return;
     }
     let mut cand = [0u32; OUTLINE_MAX];
-    let picked = outline(&p, bx, view, st, &mut cand);
+    let picked = outline::<P, N>(&p, bx, view, st, &mut cand);
     if picked == Some(0) {
         return;
     }
-    if front.is_none() {
+    if !front {
         let near = nearest(&a);
         let covered = match picked {
             Some(n) => cand[..n].iter().all(|&j| {
@@ -623,10 +608,8 @@ fn raster_polygon<const N: usize>(
             return;
         }
     }
-    let k = setup::polygon(a, g, &view.basis);
-    let mut v4 = [v[0]; 4];
-    v4[..N].copy_from_slice(&v);
-    st.polys.push((v4, N as u8, id, bx));
+    let k = setup::polygon::<P, N>(a, g, &view.basis);
+    st.polys.push((P::KIND as u8, i, id, bx));
     match picked {
         Some(n) => {
             for &j in &cand[..n] {
@@ -657,7 +640,7 @@ fn test_polygon<const N: usize>(
     view: &View,
     st: &mut Band,
 ) {
-    if k.class == Class::Opaque {
+    if k.class == setup::Class::Opaque {
         st.flag[j] = true;
         return;
     }
@@ -671,13 +654,13 @@ fn test_polygon<const N: usize>(
     }
     let den = (k.den[0] + sy * k.den[2]) + sx * k.den[1];
     if den.is_nan() || den <= 0.0 {
-        if k.class == Class::Loose {
+        if k.class == setup::Class::Loose {
             st.loose[j] = 0.0;
         }
         return;
     }
     let t = k.p / den;
-    if k.class == Class::Loose {
+    if k.class == setup::Class::Loose {
         st.loose[j] = st.loose[j].min(t * k.lower);
     }
     if t < st.t[j] || (t == st.t[j] && id < st.id[j]) {
@@ -686,15 +669,23 @@ fn test_polygon<const N: usize>(
     }
 }
 
-fn raster_sphere(c: DVec3, r: f64, id: i32, view: &View, st: &mut Band) {
-    let Some(bx) = view.sphere_box(c, r) else {
+/// Primitive `j` of `others`, of the bounded family `F`, in this band: every pixel of its
+/// bounding sphere's box flagged for the f64 re-decision, and its f32 hits kept meanwhile (so
+/// that the flag pass and the proofs of [`hidden`] see them).
+fn raster_bounded<F: Bounded>(others: &Others, j: usize, view: &View, st: &mut Band) {
+    let (c, r) = others.bounds[j];
+    let Some(bx) = view.ball_box(c, r) else {
         return;
     };
     if st.rows(bx).is_empty() {
         return;
     }
-    st.spheres.push((c, r, id, bx));
-    let k = SphereK::new(c, r, view.eye).cast::<f32>();
+    let Some(k) = F::setup(&others.geometry::<F>(j), view.eye) else {
+        return;
+    };
+    let id = others.ids[j];
+    st.others.push((F::KIND as u8, j as u32, id, bx));
+    let k = F::cast::<f32>(&k);
     let (x0, x1) = (bx[0] as usize, bx[1] as usize);
     for y in st.rows(bx) {
         let row = (y - st.y0) * st.x;
@@ -702,7 +693,7 @@ fn raster_sphere(c: DVec3, r: f64, id: i32, view: &View, st: &mut Band) {
         for x in x0..=x1 {
             let j = row + x;
             st.flag[j] = true;
-            if let Some(t) = sphere_x1(&k, view.t32.dir_x1(x, y)) {
+            if let Some(t) = F::hit_x1(&k, view.t32.dir_x1(x, y)) {
                 let sx = view.t32.sx[x];
                 let t = t / (1.0 + sx * sx + sy * sy).sqrt();
                 if t < st.t[j] || (t == st.t[j] && id < st.id[j]) {
@@ -714,37 +705,110 @@ fn raster_sphere(c: DVec3, r: f64, id: i32, view: &View, st: &mut Band) {
     }
 }
 
-/// Pass 4 for one polygon: the oracle's constants and test at each flagged pixel of its box.
-#[allow(clippy::too_many_arguments)]
-fn redecide_polygon(
-    world: &World,
-    v: [u32; 4],
-    n: u8,
-    id: i32,
-    bx: [u16; 4],
-    view: &View,
-    st: &Band,
-    best: &mut [(Hit<f64>, [f64; 3])],
-) {
-    if !flagged(bx, st) {
-        return;
+/// The front pass's work on item `j` of a family ([`band`]): a cluster of polygons, unless it
+/// is proven hidden, or a primitive of a bounded family.
+struct Front<'a> {
+    world: &'a World,
+    j: usize,
+    view: &'a View,
+    s: &'a Scratch,
+    st: &'a mut Band,
+}
+
+impl<F: Family> Class<F> for Front<'_> {
+    type Out = ();
+    #[inline(always)]
+    fn polygon<const N: usize>(self)
+    where
+        F: Polygon<N>,
+    {
+        let polys = self.world.polys(F::KIND);
+        let k = &polys.clusters[self.j];
+        if !hidden(k, self.view, self.st) {
+            let at = (self.view, &self.world.verts[..]);
+            for p in k.first..k.first + k.len {
+                raster_polygon::<F, N>(polys, p, true, at, self.s, self.st);
+            }
+        }
     }
-    let w: [DVec3; 4] = v.map(|i| world.verts[i as usize]);
-    let k = if n == 3 {
-        PolyK::<f64, 3>::triangle(&[w[0], w[1], w[2]], view.eye).map(Known::Tri)
-    } else {
-        PolyK::<f64, 4>::quad(&[w[0], w[1], w[2], w[3]], view.eye).map(Known::Quad)
-    };
-    match k {
-        Some(Known::Tri(k)) => redecide_box(bx, id, st, best, |d| polygon_x1(&k, d)),
-        Some(Known::Quad(k)) => redecide_box(bx, id, st, best, |d| polygon_x1(&k, d)),
-        None => {}
+    #[inline(always)]
+    fn bounded(self)
+    where
+        F: Bounded,
+    {
+        raster_bounded::<F>(self.world.others(F::KIND), self.j, self.view, self.st);
     }
 }
 
-enum Known {
-    Tri(PolyK<f64, 3>),
-    Quad(PolyK<f64, 4>),
+/// A waiting polygon's turn ([`band`]): polygon `p` of a polygon family.
+struct Waiting<'a> {
+    world: &'a World,
+    p: u32,
+    view: &'a View,
+    s: &'a Scratch,
+    st: &'a mut Band,
+}
+
+impl<F: Family> Class<F> for Waiting<'_> {
+    type Out = ();
+    #[inline(always)]
+    fn polygon<const N: usize>(self)
+    where
+        F: Polygon<N>,
+    {
+        let (polys, at) = (
+            self.world.polys(F::KIND),
+            (self.view, &self.world.verts[..]),
+        );
+        raster_polygon::<F, N>(polys, self.p, false, at, self.s, self.st);
+    }
+    fn bounded(self)
+    where
+        F: Bounded,
+    {
+        unreachable!("only polygons wait")
+    }
+}
+
+/// Pass 4 for primitive `j` of a family (id `id`, box `bx`): the oracle's constants
+/// ([`Family::setup`] of its f64 geometry) and test ([`Family::hit_x1`]) at each flagged pixel
+/// of its box.
+struct Redecide<'a> {
+    world: &'a World,
+    j: usize,
+    id: i32,
+    bx: [u16; 4],
+    view: &'a View,
+    st: &'a Band,
+    best: &'a mut [(Hit<f64>, [f64; 3])],
+}
+
+impl Redecide<'_> {
+    /// The test of `F`'s primitive `g` at each flagged pixel.
+    fn run<F: Family>(self, g: &F::Geometry) {
+        if let Some(k) = F::setup(g, self.view.eye) {
+            redecide_box(self.bx, self.id, self.st, self.best, |d| F::hit_x1(&k, d));
+        }
+    }
+}
+
+impl<F: Family> Class<F> for Redecide<'_> {
+    type Out = ();
+    fn polygon<const N: usize>(self)
+    where
+        F: Polygon<N>,
+    {
+        let v = self.world.polys(F::KIND).vertices::<N>(self.j);
+        let g = v.map(|i| self.world.verts[i as usize]);
+        self.run::<F>(&g);
+    }
+    fn bounded(self)
+    where
+        F: Bounded,
+    {
+        let g = self.world.others(F::KIND).geometry::<F>(self.j);
+        self.run::<F>(&g);
+    }
 }
 
 fn flagged(bx: [u16; 4], st: &Band) -> bool {

@@ -39,6 +39,7 @@
 //! Tests: `world::tests` hold every class to the f64 oracle over random scenes and cameras.
 
 use super::{EDGE_TIGHT, T_TIGHT};
+use crate::kernel::family::Polygon;
 use crate::real::U32;
 
 /// Widest edge tolerance (radians) a polygon is tested with; past it, its box is re-decided.
@@ -94,14 +95,11 @@ fn less(a: [f32; 3], b: [f32; 3]) -> bool {
 }
 
 /// A polygon's shape factor `diam / sin(alpha)`: its diameter over the sine of the angle
-/// between the two vectors its normal is the cross product of (edges for a triangle,
-/// diagonals for a quad); infinite when they are parallel. Camera-independent.
-pub fn shape<const N: usize>(v: &[glam::DVec3; N]) -> f32 {
-    let (e1, e2) = if N == 3 {
-        (v[1] - v[0], v[2] - v[0])
-    } else {
-        (v[2] - v[0], v[3] - v[1])
-    };
+/// between the two vectors its normal is the cross product of (`Polygon::NORMAL`: edges for a
+/// triangle, diagonals for a quad); infinite when they are parallel. Camera-independent.
+pub fn shape<P: Polygon<N>, const N: usize>(v: &[glam::DVec3; N]) -> f32 {
+    let [i, j, k, l] = P::NORMAL;
+    let (e1, e2) = (v[i] - v[j], v[k] - v[l]);
     let mut diam = 0.0f64;
     for i in 0..N {
         for j in i + 1..N {
@@ -140,20 +138,24 @@ const OPAQUE: f32 = 0.0;
 /// (the normal `raw` below, against `a_0`), in f32. Only an order of work depends on it
 /// (`raster`), never an answer, so its rounding near edge-on is harmless.
 #[inline(always)]
-pub fn faces_away<const N: usize>(a: &[[f32; 3]; N]) -> bool {
-    let (e1, e2) = if N == 3 {
-        (sub(a[1], a[0]), sub(a[2], a[0]))
-    } else {
-        (sub(a[2], a[0]), sub(a[3], a[1]))
-    };
+pub fn faces_away<P: Polygon<N>, const N: usize>(a: &[[f32; 3]; N]) -> bool {
+    let (e1, e2) = normal_pair::<P, N>(a);
     dot(a[0], cross(e1, e2)) > 0.0
+}
+
+/// The two vectors whose cross product is the raw normal of the polygon with eye-relative
+/// vertices `a` (`Polygon::NORMAL`), in f32.
+#[inline(always)]
+fn normal_pair<P: Polygon<N>, const N: usize>(a: &[[f32; 3]; N]) -> ([f32; 3], [f32; 3]) {
+    let [i, j, k, l] = P::NORMAL;
+    (sub(a[i], a[j]), sub(a[k], a[l]))
 }
 
 /// The constants of the polygon with eye-relative vertices `a` (perimeter order).
 ///
 /// `g` is the polygon's shape factor, `diam / sin(alpha)` ([`shape`]), computed once per scene.
 #[inline]
-pub fn polygon<const N: usize>(a: [[f32; 3]; N], g: f32, b: &Basis) -> Poly<N> {
+pub fn polygon<P: Polygon<N>, const N: usize>(a: [[f32; 3]; N], g: f32, b: &Basis) -> Poly<N> {
     let opaque = Poly {
         e: [[0.0; 3]; N],
         den: [0.0; 3],
@@ -162,11 +164,7 @@ pub fn polygon<const N: usize>(a: [[f32; 3]; N], g: f32, b: &Basis) -> Poly<N> {
         lower: 0.0,
         class: Class::Opaque,
     };
-    let (e1, e2) = if N == 3 {
-        (sub(a[1], a[0]), sub(a[2], a[0]))
-    } else {
-        (sub(a[2], a[0]), sub(a[3], a[1]))
-    };
+    let (e1, e2) = normal_pair::<P, N>(&a);
     let raw = cross(e1, e2);
     let facing = dot(a[0], raw);
     let raw_len = dot(raw, raw).sqrt();

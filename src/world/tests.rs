@@ -6,6 +6,7 @@
 //! the edge's plane. (Measured: dividing both bounds by 30 fails at once.)
 
 use super::setup::{self, Basis, Class};
+use crate::kernel::Triangle;
 use crate::real::U32;
 use crate::test_rng::Rng;
 use glam::DVec3;
@@ -34,8 +35,8 @@ fn tight_polygons_keep_their_written_bounds() {
             lmax: 2f64.sqrt(),
         };
         let a = v.map(|p| f32v(p - eye));
-        let g = setup::shape(&v);
-        let k = setup::polygon(a, g, &basis);
+        let g = setup::shape::<Triangle, 3>(&v);
+        let k = setup::polygon::<Triangle, 3>(a, g, &basis);
         if k.class != Class::Tight {
             continue;
         }
