@@ -233,6 +233,18 @@ impl Family for Triangle {
     fn normal(&[a, b, c]: &[DVec3; 3], eye: DVec3, _: DVec3) -> (DVec3, bool) {
         (facing((b - a).cross(c - a), a - eye), true)
     }
+
+    // For the acceleration structures (`accel`): bounded as a convex polygon.
+
+    type Outline = TriangleK<f32>;
+    #[inline(always)]
+    fn outline(k: &TriangleK<f32>) -> TriangleK<f32> {
+        *k
+    }
+    #[inline(always)]
+    fn hit_lanes_all<L: Lanes>(k: &TriangleK<L::Scalar>, d: &[L; 3]) -> (L, L) {
+        polygon_lanes_all(k, d)
+    }
 }
 
 impl Family for Quad {
@@ -274,6 +286,18 @@ impl Family for Quad {
     /// The diagonals' cross product `(C - A) x (D - B)`, turned to the eye.
     fn normal(&[a, b, c, d]: &[DVec3; 4], eye: DVec3, _: DVec3) -> (DVec3, bool) {
         (facing((c - a).cross(d - b), a - eye), true)
+    }
+
+    // For the acceleration structures (`accel`): bounded as a convex polygon.
+
+    type Outline = QuadK<f32>;
+    #[inline(always)]
+    fn outline(k: &QuadK<f32>) -> QuadK<f32> {
+        *k
+    }
+    #[inline(always)]
+    fn hit_lanes_all<L: Lanes>(k: &QuadK<L::Scalar>, d: &[L; 3]) -> (L, L) {
+        polygon_lanes_all(k, d)
     }
 }
 
