@@ -4,7 +4,8 @@
 //! Boxes are conservative for what the leaf kernels can hit, seen by one camera: each
 //! primitive's box holds, for every ray of the camera's pixels that a kernel (f32 or f64) may
 //! accept on it, a point of that ray no farther than any distance the kernel returns there,
-//! with a margin of 4u of that distance in every axis ([`reach_box`], `reach::sphere_cap`).
+//! with a margin of 4u of that distance in every axis ([`Reach`]: [`reach_box`] for a convex
+//! polygon, `reach::ball_cap` for a ball).
 //! The traversal's slab test, which errs by 2u of a distance, then enters every box on the
 //! way to the primitive no later than the primitive's hit, and the BVH finds what `--accel
 //! none` finds, bit for bit. The primitive's own box (padded by [`PAD_REL`]) is kept in the
@@ -12,10 +13,13 @@
 //! (`accel::reach`) outside a polygon's edges, over a strip across the image for a sliver seen
 //! nearly edge-on. Rounded outward to f32 in `bvh.rs`.
 
-use super::reach::{View, sphere_cap};
+use super::reach::{View, ball_cap};
+use crate::kernel::Family;
+use crate::kernel::family::Ball;
 use crate::kernel::polygon::PolyK;
 use crate::par::prelude::*;
-use crate::soa::{Group, Prepared};
+use crate::real::Real;
+use crate::soa::{Prepared, Stored, for_each_family, with_family};
 use glam::DVec3;
 
 /// Padding of a primitive's own box, relative to the largest eye-relative coordinate magnitude
@@ -39,10 +43,6 @@ impl Aabb {
         min: DVec3::INFINITY,
         max: DVec3::NEG_INFINITY,
     };
-
-    pub fn of_points(points: &[DVec3]) -> Aabb {
-        points.iter().fold(Aabb::EMPTY, |b, &p| b.grow_point(p))
-    }
 
     pub fn grow_point(self, p: DVec3) -> Aabb {
         Aabb {
@@ -80,7 +80,7 @@ impl Aabb {
 }
 
 /// What the build produces: nodes in depth-first order (node 0 is the root), and for each leaf
-/// the primitives it holds, as (type, index in that type's group).
+/// the primitives it holds, as (kind, index in that kind's group; `Family::KIND`).
 #[derive(Debug, Clone)]
 pub struct Built {
     pub nodes: Vec<BuildNode>,
@@ -97,72 +97,70 @@ pub struct BuildNode {
     pub axis: u8,
 }
 
-/// Type tags of `Built::leaves`.
-pub const SPHERE: u8 = 0;
-pub const TRIANGLE: u8 = 1;
-pub const QUAD: u8 = 2;
-
 struct Item {
     bounds: Aabb,
     centre: DVec3,
     tag: (u8, u32),
 }
 
-/// Eye-relative boxes of every prepared primitive seen by `view`: each the primitive's own box
-/// padded ([`Aabb::padded`]), grown to hold its reach ([`reach_box`]).
+/// Eye-relative boxes of every prepared primitive seen by `view`, tagged (kind, index): each
+/// the primitive's own box (`Shape::bounds`) padded ([`Aabb::padded`]), grown to hold its
+/// reach ([`Reach`]).
 pub fn boxes(
     p: &Prepared<f64>,
     shapes: &crate::scene::Shapes,
     view: &View,
 ) -> Vec<(Aabb, (u8, u32))> {
-    use crate::scene::Shape;
-    let own = |id: i32| match shapes.get(id as usize) {
-        Shape::Sphere { center, radius } => {
-            let c = center - view.eye;
-            Aabb {
-                min: c - DVec3::splat(radius),
-                max: c + DVec3::splat(radius),
-            }
-        }
-        Shape::Triangle(v) => Aabb::of_points(&v.map(|p| p - view.eye)),
-        Shape::Quad(v) => Aabb::of_points(&v.map(|p| p - view.eye)),
-    };
-    let spheres = p
-        .spheres
-        .k
-        .par_iter()
-        .zip(&p.spheres.id)
-        .enumerate()
-        .map(|(i, (k, &id))| {
-            let k = k.cast::<f32>();
-            let (min, max) = sphere_cap(k.oc, k.r2, k.c);
-            (
-                own(id).padded().union(Aabb { min, max }),
-                (SPHERE, i as u32),
-            )
-        });
-    let mut out: Vec<_> = spheres.collect();
-    out.par_extend(polygon_boxes(&p.triangles, view, TRIANGLE, &own));
-    out.par_extend(polygon_boxes(&p.quads, view, QUAD, &own));
+    let mut out = Vec::new();
+    for_each_family!(F => out.par_extend(kind_boxes::<F>(p, shapes, view)));
     out
 }
 
-/// [`boxes`] of one kind of polygon (`tag`).
-fn polygon_boxes<'a, const N: usize>(
-    g: &'a Group<PolyK<f64, N>>,
+/// [`boxes`] of the primitives of family `F`.
+fn kind_boxes<'a, F: Stored>(
+    p: &'a Prepared<f64>,
+    shapes: &'a crate::scene::Shapes,
     view: &'a View,
-    tag: u8,
-    own: &'a (impl Fn(i32) -> Aabb + Sync),
-) -> impl IntoParallelIterator<Item = (Aabb, (u8, u32))> + 'a {
+) -> impl IndexedParallelIterator<Item = (Aabb, (u8, u32))> + 'a
+where
+    F::Outline: Reach,
+{
+    let g = F::group(p);
     g.k.par_iter()
         .zip(&g.id)
         .enumerate()
         .map(move |(i, (k, &id))| {
-            (
-                reach_box(own(id).padded(), &k.cast(), view),
-                (tag, i as u32),
-            )
+            let (min, max) = shapes.get(id as usize).bounds(view.eye);
+            let own = Aabb { min, max }.padded();
+            let outline = F::outline(&F::cast::<f32>(k));
+            (outline.reach(own, view), (F::KIND as u8, i as u32))
         })
+}
+
+/// What the BVH bounds a primitive by, per outline class (`Family::Outline`: a [`Ball`] or a
+/// convex polygon's f32 constants), so that [`boxes`] is written once for every family.
+pub(crate) trait Reach: Copy {
+    /// `own` (the primitive's own box, padded) grown to hold, for every ray a kernel may accept
+    /// on the primitive seen by `view`, a point no farther than any distance it returns there,
+    /// with a margin for the slab test's rounding.
+    fn reach(&self, own: Aabb, view: &View) -> Aabb;
+}
+
+impl Reach for Ball {
+    /// `own` grown by the ball's cap (`reach::ball_cap`).
+    #[inline]
+    fn reach(&self, own: Aabb, _: &View) -> Aabb {
+        let (min, max) = ball_cap(self.oc, self.r2, self.c);
+        own.union(Aabb { min, max })
+    }
+}
+
+impl<const N: usize> Reach for PolyK<f32, N> {
+    /// [`reach_box`].
+    #[inline]
+    fn reach(&self, own: Aabb, view: &View) -> Aabb {
+        reach_box(own, self, view)
+    }
 }
 
 /// `own` (the polygon's own box) grown to hold, for every ray a kernel may accept on the
@@ -300,26 +298,25 @@ fn best_split(items: &mut [Item]) -> Option<(usize, usize)> {
 }
 
 /// The groups of `p` reordered leaf by leaf, and for each leaf its range in each reordered group
-/// (spheres, triangles, quads).
-pub fn reorder<T: Clone>(p: &Prepared<T>, built: &Built) -> (Prepared<T>, Vec<[(u32, u32); 3]>) {
-    let mut out = Prepared {
-        spheres: Group::default(),
-        triangles: Group::default(),
-        quads: Group::default(),
+/// (by kind: `Family::KIND`).
+pub fn reorder<T: Real + Default>(
+    p: &Prepared<T>,
+    built: &Built,
+) -> (Prepared<T>, Vec<[(u32, u32); 3]>) {
+    let mut out = Prepared::default();
+    let lens = |out: &Prepared<T>| {
+        let mut n = [0u32; 3];
+        for_each_family!(F => n[F::KIND] = F::group(out).len() as u32);
+        n
     };
     let mut ranges = Vec::with_capacity(built.leaves.len());
     for leaf in &built.leaves {
-        let start = [out.spheres.len(), out.triangles.len(), out.quads.len()].map(|n| n as u32);
-        for &(tag, i) in leaf {
-            let i = i as usize;
-            match tag {
-                SPHERE => out.spheres.push_from(&p.spheres, i),
-                TRIANGLE => out.triangles.push_from(&p.triangles, i),
-                _ => out.quads.push_from(&p.quads, i),
-            }
+        let start = lens(&out);
+        for &(kind, i) in leaf {
+            with_family!(kind, F => F::group_mut(&mut out).push_from(F::group(p), i as usize));
         }
-        let end = [out.spheres.len(), out.triangles.len(), out.quads.len()].map(|n| n as u32);
-        ranges.push([(start[0], end[0]), (start[1], end[1]), (start[2], end[2])]);
+        let end = lens(&out);
+        ranges.push(std::array::from_fn(|k| (start[k], end[k])));
     }
     (out, ranges)
 }

@@ -3,10 +3,12 @@
 //! (`accel::reach`), and the centre rays of each tile's packets ([`PacketCones`]), which leave
 //! out of a tile's entry the packets none of whose rays the kernel can accept.
 
-use super::reach::{Region, View, plane_near, sphere_near};
+use super::reach::{Region, View, ball_near, plane_near};
 use super::{TILE_H, TILE_W};
 use crate::camera::Camera;
+use crate::kernel::family::Ball;
 use crate::kernel::polygon::PolyK;
+use crate::soa::{Columns, Packed, Stored};
 use glam::DVec3;
 
 use crate::real::U32;
@@ -133,18 +135,17 @@ pub(super) fn polygon_footprint<const N: usize>(
     }
 }
 
-/// The rectangle and `near` of the sphere (`center`, `radius`) whose f32 constants are `oc`,
-/// `r2` and `c`: the projection of the cube about its centre of half size `r'`
-/// (`View::sphere_reach`: every ray a kernel accepts passes within it of the centre), the
-/// whole image when the eye is within `r'`; and [`sphere_near`].
-pub(super) fn sphere_footprint(
+/// The rectangle and `near` of the ball of centre `oc` (minus the eye, f64) and `radius` whose
+/// f32 constants are `oc32`, `r2` and `c`: the projection of the cube about its centre of half
+/// size `r'` (`View::ball_reach`: every ray a kernel accepts passes within it of the centre),
+/// the whole image when the eye is within `r'`; and [`ball_near`].
+pub(super) fn ball_footprint(
     screen: &Screen,
-    (center, radius): (DVec3, f64),
+    (oc, radius): (DVec3, f64),
     (oc32, r2, c): ([f32; 3], f32, f32),
 ) -> (Option<[u16; 4]>, f64) {
     let v = &screen.view;
-    let oc = center - v.eye;
-    let r = v.sphere_reach(oc, radius);
+    let r = v.ball_reach(oc, radius);
     let rect = if oc.length() <= r {
         Some(screen.whole())
     } else {
@@ -154,7 +155,75 @@ pub(super) fn sphere_footprint(
         });
         screen.rect(corners)
     };
-    (rect, sphere_near(oc32, r2, c))
+    (rect, ball_near(oc32, r2, c))
+}
+
+/// The outline (`Family::outline`) of primitive `i` of family `F` in `packed`'s columns.
+#[inline(always)]
+pub(crate) fn outline<F: Stored>(packed: &Packed, i: usize) -> F::Outline {
+    F::outline(&Columns::<F>::get(F::columns(packed), i))
+}
+
+/// What the tiles bound a primitive by, per outline class (`Family::Outline`: a [`Ball`] or a
+/// convex polygon's f32 constants), so that binning and `Tiles::attach` are written once for
+/// every family.
+pub(super) trait Footprint: Copy {
+    /// The pixel rectangle (`None`: no pixel) and `near` bound of the primitive seen on
+    /// `screen`; `ball` gives, when asked, the ball's centre minus the eye and radius in f64
+    /// (`Family::ball`), which only a ball's rectangle reads.
+    fn footprint(
+        &self,
+        screen: &Screen,
+        ball: impl FnOnce() -> Option<(DVec3, f64)>,
+    ) -> (Option<[u16; 4]>, f64);
+
+    /// The packets (bits) of the tile with centre points `c` that a kernel may accept a ray of
+    /// on the primitive ([`PacketCones::polygon`], [`PacketCones::ball`]).
+    fn packets(&self, cones: &PacketCones, c: &[wide::f32x8; 3]) -> u32;
+
+    /// The packets (bits) of the tile with centre points `c` where some pixel's exact ray may
+    /// meet the primitive farther than `reach` ([`PacketCones::polygon_beyond`],
+    /// [`PacketCones::ball_beyond`]).
+    fn beyond(&self, cones: &PacketCones, c: &[wide::f32x8; 3], reach: f64) -> u32;
+}
+
+impl Footprint for Ball {
+    #[inline(always)]
+    fn footprint(
+        &self,
+        screen: &Screen,
+        ball: impl FnOnce() -> Option<(DVec3, f64)>,
+    ) -> (Option<[u16; 4]>, f64) {
+        let exact = ball().expect("a family bounded by a ball gives its centre and radius");
+        ball_footprint(screen, exact, (self.oc, self.r2, self.c))
+    }
+    #[inline(always)]
+    fn packets(&self, cones: &PacketCones, c: &[wide::f32x8; 3]) -> u32 {
+        cones.ball(c, self)
+    }
+    #[inline(always)]
+    fn beyond(&self, cones: &PacketCones, c: &[wide::f32x8; 3], reach: f64) -> u32 {
+        cones.ball_beyond(c, self, reach)
+    }
+}
+
+impl<const N: usize> Footprint for PolyK<f32, N> {
+    #[inline(always)]
+    fn footprint(
+        &self,
+        screen: &Screen,
+        _: impl FnOnce() -> Option<(DVec3, f64)>,
+    ) -> (Option<[u16; 4]>, f64) {
+        polygon_footprint(screen, self)
+    }
+    #[inline(always)]
+    fn packets(&self, cones: &PacketCones, c: &[wide::f32x8; 3]) -> u32 {
+        cones.polygon(c, &self.n)
+    }
+    #[inline(always)]
+    fn beyond(&self, cones: &PacketCones, c: &[wide::f32x8; 3], reach: f64) -> u32 {
+        cones.polygon_beyond(c, self.nrm, self.p, reach)
+    }
 }
 
 /// The 4x2 packets of the image, for leaving out of a tile entry's packets those whose rays
@@ -196,7 +265,7 @@ pub(crate) struct PacketCones {
     far: f32,
     /// Angle between a pixel's exact ray and the f32 tables' point, plus an f32 silhouette's
     /// band, radians: `max(32u, 2 (eps + Camera::direction_error))`, rounded up (for
-    /// [`PacketCones::sphere_beyond`] and [`PacketCones::polygon_beyond`]).
+    /// [`PacketCones::ball_beyond`] and [`PacketCones::polygon_beyond`]).
     ray: f32,
 }
 
@@ -264,20 +333,14 @@ impl PacketCones {
         })
     }
 
-    /// The packets (bits) of the tile with centre points `c` that edge normals `n[e]` (x, y, z
-    /// columns of the packed store) of polygon `i` may accept: those not wholly outside any
-    /// one edge plane.
+    /// The packets (bits) of the tile with centre points `c` that a polygon of f32 edge
+    /// normals `n` may accept: those not wholly outside any one edge plane.
     #[inline]
-    pub(crate) fn polygon<const N: usize>(
-        &self,
-        c: &[wide::f32x8; 3],
-        n: &[[Vec<f32>; 3]; N],
-        i: usize,
-    ) -> u32 {
+    pub(crate) fn polygon<const N: usize>(&self, c: &[wide::f32x8; 3], n: &[[f32; 3]; N]) -> u32 {
         use wide::f32x8;
         let mut out = f32x8::ZERO;
-        for edge in n {
-            let (dot, slack) = self.spread(c, [edge[0][i], edge[1][i], edge[2][i]]);
+        for &edge in n {
+            let (dot, slack) = self.spread(c, edge);
             out |= dot.simd_lt(-slack);
         }
         !out.to_bitmask() & 0xFF
@@ -308,13 +371,13 @@ impl PacketCones {
         x[0] * x[0] + x[1] * x[1] + x[2] * x[2]
     }
 
-    /// The packets (bits) of the tile with centre points `c` that sphere `i` of `s` may meet.
+    /// The packets (bits) of the tile with centre points `c` that the ball `b` may meet.
     #[inline]
-    pub(crate) fn sphere(&self, c: &[wide::f32x8; 3], s: &crate::soa::Spheres, i: usize) -> u32 {
+    pub(crate) fn ball(&self, c: &[wide::f32x8; 3], b: &Ball) -> u32 {
         use wide::f32x8;
-        let oc = [s.ocx[i], s.ocy[i], s.ocz[i]];
+        let oc = b.oc;
         let len = (oc[0] * oc[0] + oc[1] * oc[1] + oc[2] * oc[2]).sqrt();
-        let r = s.r2[i].sqrt();
+        let r = b.r2.sqrt();
         let m = ANGLE_MARGIN as f32;
         let (a, rad) = (self.far, self.rad);
         // in f32, rounded up by the margin's 1 + 1e-5 (the terms are positive)
@@ -326,7 +389,7 @@ impl PacketCones {
     }
 
     /// The packets (bits) of the tile with centre points `c` where some pixel's exact ray may
-    /// meet sphere `i` of `s` farther than `reach` (every packet when the eye is inside it).
+    /// meet the ball `b` farther than `reach` (every packet when the eye is inside it).
     ///
     /// Derivation. The sphere the f32 constants give (centre `oc`, radius `r`) is within
     /// `e = 4u (L + r)` of the exact one (`L = |oc|`; centre and radius rounded once), so the
@@ -346,23 +409,17 @@ impl PacketCones {
     /// a ray the exact one misses; the rest covers this test's f32 cross product. The f64 terms
     /// are rounded towards the safe side, the f32 lanes by 1e-5 relative.
     #[inline]
-    pub(crate) fn sphere_beyond(
-        &self,
-        c: &[wide::f32x8; 3],
-        s: &crate::soa::Spheres,
-        i: usize,
-        reach: f64,
-    ) -> u32 {
+    pub(crate) fn ball_beyond(&self, c: &[wide::f32x8; 3], b: &Ball, reach: f64) -> u32 {
         use wide::f32x8;
-        let oc = [s.ocx[i], s.ocy[i], s.ocz[i]];
+        let oc = b.oc;
         let l = oc.map(f64::from).iter().map(|v| v * v).sum::<f64>().sqrt();
-        let r = f64::from(s.r2[i]).sqrt();
+        let r = f64::from(b.r2).sqrt();
         let r = r - 4.0 * U32 * (l + r);
         let (k, t, ray) = (l * l - r * r, reach, f64::from(self.ray));
         let rho2 = l * l - ((t + k / t) / 2.0).powi(2);
         let slope = rho2.max(0.0).sqrt() * (1.0 - 1e-6) - 2.0 * ray * l;
         // the eye inside, `t` at or past the silhouette or short of the sphere (or NaN)
-        if s.inside[i] || !(r > 0.0 && l > r && t > 0.0 && t * t < k && slope > 0.0) {
+        if b.inside || !(r > 0.0 && l > r && t > 0.0 && t * t < k && slope > 0.0) {
             return 0xFF;
         }
         let slope = crate::real::f32_down(slope);
@@ -376,7 +433,7 @@ impl PacketCones {
     }
 
     /// The packets (bits) of the tile with centre points `c` where some pixel's exact ray may
-    /// meet the plane of polygon `i` (unit normal `nrm`, distance `p > 0`, oriented so that
+    /// meet the plane of a polygon (f32 unit normal `nrm`, distance `p > 0`, oriented so that
     /// hits have `d . nrm > 0`) farther than `reach`.
     ///
     /// Derivation. A unit ray meets the plane at `t = p / (d . N)` where `d . N > 0`. Over a
@@ -386,21 +443,20 @@ impl PacketCones {
     /// `c . N < -S`. `tol` (as there) covers the exact rays' distance from the tables' points
     /// and this test's f32 rounding; the lanes are rounded towards the safe side by 1e-5.
     #[inline]
-    pub(crate) fn polygon_beyond<const N: usize>(
+    pub(crate) fn polygon_beyond(
         &self,
         c: &[wide::f32x8; 3],
-        poly: &crate::soa::Polygons<N>,
-        i: usize,
+        nrm: [f32; 3],
+        p: f32,
         reach: f64,
     ) -> u32 {
         use wide::f32x8;
         if reach.is_nan() || reach <= 0.0 {
             return 0xFF;
         }
-        let (dot, slack) = self.spread(c, [poly.nrm[0][i], poly.nrm[1][i], poly.nrm[2][i]]);
+        let (dot, slack) = self.spread(c, nrm);
         let len = (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
-        let far =
-            f32x8::splat(poly.p[i]) * (len + f32x8::splat(self.rad)) * f32x8::splat(1.0 + 1e-5);
+        let far = f32x8::splat(p) * (len + f32x8::splat(self.rad)) * f32x8::splat(1.0 + 1e-5);
         let cos = dot - slack;
         let within = (cos.simd_gt(f32x8::ZERO)
             & far.simd_le(cos * f32x8::splat(crate::real::f32_down(reach) * (1.0 - 1e-5))))

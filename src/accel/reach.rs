@@ -51,7 +51,7 @@
 //! (`oc` rounded to f32 moves it by `u/2 |oc|` more), and the exact ray within
 //! `r' = r (1 + 4u) + E |oc|`. The distance is `fl(c / fl(b + s))` with `b <= |oc| (1 + 7u)`
 //! and `s = fl(sqrt(disc)) <= r (1 + u)` (`disc <= r2`), so with the eye outside
-//! `t32 >= c (1 - u) / ((|oc| (1 + 8u) + r (1 + 2u)) (1 + 2u))` ([`sphere_near`]); with the
+//! `t32 >= c (1 - u) / ((|oc| (1 + 8u) + r (1 + 2u)) (1 + 2u))` ([`ball_near`]); with the
 //! eye inside, 0.
 //!
 //! # The BVH
@@ -61,7 +61,7 @@
 //! every ray a kernel accepts on it, no farther than the distance the kernel returns there,
 //! with a margin of `4u` of that distance for the slab test's rounding (2u):
 //! [`View::polygon_slice`] (the region's rays at the polygon's `near`) or [`View::polygon_cut`]
-//! (the region's rays cut by a plane just nearer than the polygon's), and [`sphere_cap`] (the
+//! (the region's rays cut by a plane just nearer than the polygon's), and [`ball_cap`] (the
 //! cone of the accepted rays at the sphere's `near`, or the eye itself when it is within
 //! `32u (|oc| + r)` of the sphere).
 //!
@@ -190,7 +190,7 @@ impl View {
 
     /// The radius `r'` about the centre (`oc`: centre - eye, f64) within which every ray a
     /// kernel accepts on a sphere of radius `r` passes (module comment).
-    pub(crate) fn sphere_reach(&self, oc: DVec3, r: f64) -> f64 {
+    pub(crate) fn ball_reach(&self, oc: DVec3, r: f64) -> f64 {
         (r * (1.0 + 4.0 * U32) + self.edge * oc.length()) * (1.0 + SLACK)
     }
 
@@ -274,7 +274,7 @@ pub(crate) fn plane_near(p: f32) -> f64 {
 
 /// A lower bound on every distance a kernel returns on the sphere of f32 constants `oc`, `r2`,
 /// `c` (0 with the eye inside: `c <= 0`; module comment).
-pub(crate) fn sphere_near(oc: [f32; 3], r2: f32, c: f32) -> f64 {
+pub(crate) fn ball_near(oc: [f32; 3], r2: f32, c: f32) -> f64 {
     if c.is_nan() || c <= 0.0 {
         return 0.0;
     }
@@ -296,9 +296,9 @@ pub(crate) fn sphere_near(oc: [f32; 3], r2: f32, c: f32) -> f64 {
 ///   `s^2 <= r^2 - |l|^2 + 8u |oc| |l|` give `|b|^2 - s^2 >= |oc|^2 - r^2 - 8u |oc|^2 >=
 ///   24u |oc|^2`, so `|b| - s >= 12u |oc|`, more than the error of `b` (`3.5u |oc|`): then
 ///   `q = b + s < 0` and `t <= 0`. Its direction lies within `alpha`, `sin alpha = r_a / |oc|`,
-///   of the centre's, and its point at `near` ([`sphere_near`]) within
+///   of the centre's, and its point at `near` ([`ball_near`]) within
 ///   `2 near sin(alpha / 2) + 3.5u near` of `near oc / |oc|`.
-pub(crate) fn sphere_cap(oc: [f32; 3], r2: f32, c: f32) -> (DVec3, DVec3) {
+pub(crate) fn ball_cap(oc: [f32; 3], r2: f32, c: f32) -> (DVec3, DVec3) {
     let oc = DVec3::new(oc[0].into(), oc[1].into(), oc[2].into());
     let (len, r) = (oc.length(), f64::from(r2).sqrt());
     if c.is_nan() || c <= 0.0 || len - r <= 32.0 * U32 * (len + r) {
@@ -306,7 +306,7 @@ pub(crate) fn sphere_cap(oc: [f32; 3], r2: f32, c: f32) -> (DVec3, DVec3) {
         return (DVec3::splat(-half), DVec3::splat(half));
     }
     // (the f32 components went to f64 exactly, and come back so)
-    let near = sphere_near(oc.to_array().map(|v| v as f32), r2, c);
+    let near = ball_near(oc.to_array().map(|v| v as f32), r2, c);
     let sin = ((r * (1.0 + 3.0 * U32) + 5.0 * U32 * len) / len).min(1.0);
     let chord = 2.0 * (sin.asin() / 2.0).sin();
     let half = near * (chord + 8.0 * U32) * (1.0 + SLACK);

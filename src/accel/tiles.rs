@@ -69,22 +69,19 @@
 //! bit: seed scenes, random scenes, primitives crossing the eye's plane, the eye inside a
 //! sphere, rectangles clipped at the border, random telephoto cameras on the meshes).
 
-use super::footprint::PacketCones;
+use super::footprint::{Footprint, PacketCones, outline};
 use super::{TILE_H, TILE_W};
-use crate::kernel::Hit8;
 use crate::kernel::packet::{BLOCK_H, BLOCK_W};
-use crate::kernel::polygon::polygon_lanes_all;
-use crate::kernel::sphere::sphere_lanes_all;
+use crate::kernel::{Family, Hit8};
 use crate::par::prelude::*;
-use crate::soa::Packed;
+use crate::soa::{Columns, Packed, Stored, with_family};
 use wide::f32x8;
 
-/// Kinds of list entries (top two bits of [`Entry::prim`]).
-const SPHERE: u32 = 0;
-const TRIANGLE: u32 = 1;
-const QUAD: u32 = 2;
+/// The kind of a list entry (`Family::KIND`) is the top two bits of [`Entry::prim`], its
+/// index in that kind's packed store the bits below.
 const KIND_SHIFT: u32 = 30;
 const INDEX_MASK: u32 = (1 << KIND_SHIFT) - 1;
+const _: () = assert!(crate::scene::KINDS.len() <= 1 << (32 - KIND_SHIFT));
 
 /// One primitive in one tile's list: 12 bytes (checked below).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -122,8 +119,7 @@ impl Entry {
         }
     }
 
-    /// The primitive's kind ([`SPHERE`], [`TRIANGLE`], [`QUAD`]) and index in that kind's
-    /// packed store.
+    /// The primitive's kind (`Family::KIND`) and index in that kind's packed store.
     #[inline(always)]
     fn kind_index(&self) -> (u32, usize) {
         kind_index(self.prim)
@@ -323,7 +319,7 @@ impl Tiles {
     ///
     /// Also marks, per tile, the packets whose hits on an entry's primitive may lie beyond the
     /// value stored, `s`: those where some pixel's exact ray (`camera`'s) may meet it beyond
-    /// `s (1 - 2 error)` (`PacketCones::sphere_beyond`, `PacketCones::polygon_beyond`), where
+    /// `s (1 - 2 error)` (`PacketCones::ball_beyond`, `PacketCones::polygon_beyond`), where
     /// `error` bounds the relative error of the kernel's f32 distances against the exact ones
     /// up to `s`: a hit there is at most `s (1 - 2 error)(1 + error) < s`. A +inf value marks
     /// none, a value `<= 0` all the entry's packets. A tile where no packet is marked walks
@@ -365,9 +361,9 @@ impl Tiles {
                     let reach = f64::from(e.attached()) * (1.0 - 2.0 * error);
                     let beyond = match kind {
                         _ if v == f32::INFINITY => 0,
-                        SPHERE => cones.sphere_beyond(&c, &packed.spheres, i, reach),
-                        TRIANGLE => cones.polygon_beyond(&c, &packed.triangles, i, reach),
-                        _ => cones.polygon_beyond(&c, &packed.quads, i, reach),
+                        kind => with_family!(kind, F => {
+                            outline::<F>(packed, i).beyond(&cones, &c, reach)
+                        }),
                     };
                     if beyond & e.packets() != 0 {
                         marks |= beyond & e.packets();
@@ -424,26 +420,17 @@ impl PacketLists {
     }
 }
 
-/// Tests entry `e` against the rays `d`, keeping the nearest hits in `hit`. Polygons without
-/// early exit (see `polygon_lanes_all`); spheres leave early where no lane meets them (their
-/// square root and division cost more than a mispredicted branch).
+/// Tests entry `e` against the rays `d`, keeping the nearest hits in `hit`, with its family's
+/// kernel without early exit (`Family::hit_lanes_all`): which packets a small primitive meets
+/// is as likely as not, and a branch cannot predict it.
 #[inline(always)]
 fn test_entry(p: &Packed, e: &Entry, d: &[f32x8; 3], hit: &mut Hit8) -> f32x8 {
     let (kind, i) = e.kind_index();
-    match kind {
-        SPHERE => {
-            let (mask, t) = sphere_lanes_all(&p.spheres.get(i), d);
-            hit.update(mask, t, p.spheres.id[i])
-        }
-        TRIANGLE => {
-            let (mask, t) = polygon_lanes_all(&p.triangles.get(i), d);
-            hit.update(mask, t, p.triangles.id[i])
-        }
-        _ => {
-            let (mask, t) = polygon_lanes_all(&p.quads.get(i), d);
-            hit.update(mask, t, p.quads.id[i])
-        }
-    }
+    with_family!(kind, F => {
+        let s = F::columns(p);
+        let (mask, t) = F::hit_lanes_all(&Columns::<F>::get(s, i), d);
+        hit.update(mask, t, Columns::<F>::id(s, i))
+    })
 }
 
 mod bin;

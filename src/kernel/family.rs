@@ -75,6 +75,45 @@ pub trait Family: 'static {
     fn class<C: Class<Self>>(class: C) -> C::Out
     where
         Self: Sized;
+
+    // What the acceleration structures (`accel`: the tiles, the BVH) ask of a family: the
+    // outline class its primitives are bounded by, and the packet kernel without early exit.
+
+    /// The outline class the acceleration structures bound the family's primitives by, from
+    /// their f32 constants: a [`Ball`], or a convex polygon of `N` edges (`polygon::PolyK`,
+    /// f32). `accel` writes its bounds once per class, not per family.
+    type Outline: Copy;
+
+    /// The outline of the primitive of f32 constants `k`: the same f32 values, bit for bit.
+    fn outline(k: &Self::K<f32>) -> Self::Outline;
+
+    /// For a family bounded by a [`Ball`]: the ball's centre minus `eye` (one f64 subtraction
+    /// per axis) and its radius, exactly as the scene gives them (`g`), which the tiles'
+    /// pixel rectangle of a ball is computed from. `None` (the default) for other outlines.
+    fn ball(g: &Self::Geometry, eye: DVec3) -> Option<(DVec3, f64)> {
+        let _ = (g, eye);
+        None
+    }
+
+    /// [`Family::hit_lanes`] with no early exit: the distance computed in every lane, the mask
+    /// possibly empty, the same bits where it is set (the tiles' per-packet walk, whose
+    /// outcomes a branch cannot predict).
+    fn hit_lanes_all<L: Lanes>(k: &Self::K<L::Scalar>, d: &[L; 3]) -> (L, L);
+}
+
+/// A ball seen from the eye, by its f32 constants: the outline class (`Family::Outline`) of a
+/// primitive that every ray a kernel accepts passes near the centre of, with the distances of
+/// the sphere kernel's near root (`accel::reach` derives the bounds from them).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ball {
+    /// Centre minus eye.
+    pub oc: [f32; 3],
+    /// Radius squared.
+    pub r2: f32,
+    /// `|oc|^2 - r^2`, computed in f64 and rounded.
+    pub c: f32,
+    /// The eye inside or on the ball (`c <= 0`).
+    pub inside: bool,
 }
 
 /// `n` normalised and turned to face the eye, from which a point of the plane lies at `rel`.

@@ -247,6 +247,18 @@ impl Family for Triangle {
     fn class<C: crate::kernel::family::Class<Triangle>>(class: C) -> C::Out {
         class.polygon::<3>()
     }
+
+    // For the acceleration structures (`accel`): bounded as a convex polygon.
+
+    type Outline = TriangleK<f32>;
+    #[inline(always)]
+    fn outline(k: &TriangleK<f32>) -> TriangleK<f32> {
+        *k
+    }
+    #[inline(always)]
+    fn hit_lanes_all<L: Lanes>(k: &TriangleK<L::Scalar>, d: &[L; 3]) -> (L, L) {
+        polygon_lanes_all(k, d)
+    }
 }
 
 impl Family for Quad {
@@ -295,6 +307,18 @@ impl Family for Quad {
     /// A convex polygon of 4 edges.
     fn class<C: crate::kernel::family::Class<Quad>>(class: C) -> C::Out {
         class.polygon::<4>()
+    }
+
+    // For the acceleration structures (`accel`): bounded as a convex polygon.
+
+    type Outline = QuadK<f32>;
+    #[inline(always)]
+    fn outline(k: &QuadK<f32>) -> QuadK<f32> {
+        *k
+    }
+    #[inline(always)]
+    fn hit_lanes_all<L: Lanes>(k: &QuadK<L::Scalar>, d: &[L; 3]) -> (L, L) {
+        polygon_lanes_all(k, d)
     }
 }
 

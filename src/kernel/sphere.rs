@@ -30,7 +30,7 @@
 //! rays exactly tangent to a sphere may hit or miss (disc ~ 0 within rounding).
 //! Proven by: `tests::far_small_sphere_*`, `tests::x8_equals_x1_*`, and the agreement tests.
 
-use crate::kernel::family::Family;
+use crate::kernel::family::{Ball, Family};
 use crate::kernel::lanes::Lanes;
 use crate::real::{Real, V3, dot, v3};
 use crate::scene::Shape;
@@ -129,6 +129,27 @@ impl Family for Sphere {
         let out = (point - center).normalize_or_zero();
         let inside = (eye - center).length() < radius;
         (if inside { -out } else { out }, false)
+    }
+
+    // For the acceleration structures (`accel`): bounded as a ball.
+
+    type Outline = Ball;
+    #[inline(always)]
+    fn outline(k: &SphereK<f32>) -> Ball {
+        Ball {
+            oc: k.oc,
+            r2: k.r2,
+            c: k.c,
+            inside: k.inside,
+        }
+    }
+    #[inline(always)]
+    fn ball(&(center, radius): &(DVec3, f64), eye: DVec3) -> Option<(DVec3, f64)> {
+        Some((center - eye, radius))
+    }
+    #[inline(always)]
+    fn hit_lanes_all<L: Lanes>(k: &SphereK<L::Scalar>, d: &[L; 3]) -> (L, L) {
+        sphere_lanes_all(k, d)
     }
 
     // For the world engine (`--accel world`).

@@ -400,7 +400,7 @@ fn polygon_case<const N: usize>(
 /// rectangle, within `r'` of the centre, at no less than `near`, and the BVH finds it.
 #[test]
 fn sphere_reach_holds_every_accepted_ray() {
-    use crate::accel::footprint::{Screen, sphere_footprint};
+    use crate::accel::footprint::{Screen, ball_footprint};
     let mut rng = Rng(0x5EED_0004);
     let mut seen = Seen {
         closest: f64::INFINITY,
@@ -451,8 +451,9 @@ fn sphere_reach_holds_every_accepted_ray() {
         let screen = Screen::new(&cam);
         let k64 = SphereK::new(centre, r, eye);
         let k32 = k64.cast::<f32>();
-        let (rect, near) = sphere_footprint(&screen, (centre, r), (k32.oc, k32.r2, k32.c));
-        let reach = screen.view.sphere_reach(centre - eye, r);
+        let oc = centre - screen.view.eye;
+        let (rect, near) = ball_footprint(&screen, (oc, r), (k32.oc, k32.r2, k32.c));
+        let reach = screen.view.ball_reach(centre - eye, r);
         let hits = |d32: V3<f32>, d: V3<f64>| {
             let (h32, h64) = (sphere_x1(&k32, d32), sphere_x1(&k64, d));
             if h32.is_some() || h64.is_some() {
@@ -461,7 +462,7 @@ fn sphere_reach_holds_every_accepted_ray() {
             }
             (h32, h64)
         };
-        let cap = [sphere_cap(k32.oc, k32.r2, k32.c)];
+        let cap = [ball_cap(k32.oc, k32.r2, k32.c)];
         check_pixels(&cam, &scene, (None, rect, near), hits, &cap, &mut seen);
         cases += 1;
     }

@@ -2,15 +2,13 @@
 //! the stores, and each tile's list with the packets of the tile each entry may reach, by a
 //! parallel counting sort (the module comment of `tiles.rs` derives the bounds).
 
-use super::{
-    Entry, INDEX_MASK, KIND_SHIFT, PACKETS, QUAD, SPHERE, TILE_H, TILE_W, TRIANGLE, Tiles,
-};
-use crate::accel::footprint::{PacketCones, Screen, near_f32, polygon_footprint, sphere_footprint};
+use super::{Entry, INDEX_MASK, KIND_SHIFT, PACKETS, TILE_H, TILE_W, Tiles, kind_index};
+use crate::accel::footprint::{Footprint, PacketCones, Screen, near_f32, outline};
 use crate::camera::Camera;
 use crate::kernel::packet::{BLOCK_H, BLOCK_W};
 use crate::par::prelude::*;
-use crate::scene::{Scene, Shape};
-use crate::soa::{Order, Packed};
+use crate::scene::Scene;
+use crate::soa::{Columns, Order, Packed, Stored, for_each_family, with_family};
 use std::sync::atomic::{AtomicU32, Ordering};
 use wide::f32x8;
 
@@ -108,43 +106,14 @@ impl Tiles {
         let screen = Screen::new(camera);
         let (w, h) = (camera.width as usize, camera.height as usize);
         let (cols, rows) = (w.div_ceil(TILE_W), h.div_ceil(TILE_H));
-        let footprint = |kind: u32, index: usize, id: f32| -> Print {
-            let (rect, near) = match kind {
-                SPHERE => {
-                    let Shape::Sphere { center, radius } = scene.shapes.get(id as usize) else {
-                        unreachable!("the packed spheres are the scene's spheres")
-                    };
-                    let s = &packed.spheres;
-                    let oc = [s.ocx[index], s.ocy[index], s.ocz[index]];
-                    sphere_footprint(&screen, (center, radius), (oc, s.r2[index], s.c[index]))
-                }
-                TRIANGLE => polygon_footprint(&screen, &packed.triangles.get(index)),
-                _ => polygon_footprint(&screen, &packed.quads.get(index)),
-            };
-            Print {
-                near: near_f32(near),
-                prim: kind << KIND_SHIFT | index as u32,
-                rect: rect.unwrap_or(OFF_SCREEN),
-            }
-        };
         // Every primitive's footprint, in parallel.
         prints.clear();
-        prints.par_extend(
-            (0..packed.spheres.len())
-                .into_par_iter()
-                .map(|i| footprint(SPHERE, i, packed.spheres.id[i])),
-        );
-        prints.par_extend(
-            (0..packed.triangles.len())
-                .into_par_iter()
-                .map(|i| footprint(TRIANGLE, i, packed.triangles.id[i])),
-        );
-        prints.par_extend(
-            (0..packed.quads.len())
-                .into_par_iter()
-                .map(|i| footprint(QUAD, i, packed.quads.id[i])),
-        );
-        let kinds = [packed.spheres.len(), packed.triangles.len()];
+        for_each_family!(F => {
+            let n = Columns::<F>::len(F::columns(packed));
+            let prints_of = (0..n).into_par_iter();
+            prints.par_extend(prints_of.map(|i| footprint::<F>(&screen, scene, packed, i)));
+        });
+        let kinds = packed.ids().map(<[f32]>::len);
         let order = screen_order(&mut prints, kinds, cols, cols * rows);
         // The packets of a tile that a footprint's kernel may reach: those its rectangle
         // overlaps, less those `PacketCones` finds wholly outside one of a polygon's edge
@@ -156,19 +125,14 @@ impl Tiles {
             .map(|t| PacketCones::centres(&tables, (t % cols, t / cols)))
             .collect();
         let packets = |e: &Print, (tx, ty): (usize, usize)| -> u32 {
-            let kind = e.prim >> KIND_SHIFT;
-            let index = (e.prim & INDEX_MASK) as usize;
+            let (kind, index) = kind_index(e.prim);
             let old = order[kind as usize]
                 .as_ref()
                 .map_or(index, |o| o[index] as usize);
             let rect = e.rect.map(usize::from);
             let c = &centres[ty * cols + tx];
             packet_bits(rect, (tx * TILE_W, ty * TILE_H))
-                & match kind {
-                    TRIANGLE => cones.polygon(c, &packed.triangles.n, old),
-                    QUAD => cones.polygon(c, &packed.quads.n, old),
-                    _ => cones.sphere(c, &packed.spheres, old),
-                }
+                & with_family!(kind, F => outline::<F>(packed, old).packets(&cones, c))
         };
         // The tiles of a footprint's rectangle with their packets: a rectangle within one tile
         // is listed there whatever its packets (so the counting pass need not find them; an
@@ -261,23 +225,48 @@ impl Tiles {
     }
 }
 
-/// The screen order of the primitives of `prints` (spheres, then `counts[1]` triangles, then
-/// quads, each kind in the stores' order): per kind, by the first tile of the footprint's
-/// rectangle in row-major order (`tiles` tiles; off-screen footprints last), in store order
+/// The footprint of primitive `index` of family `F` in `packed` (whose ids index
+/// `scene.shapes`) on `screen`: its outline's rectangle and `near` (`Footprint`), `near`
+/// rounded down to f32.
+fn footprint<F: Stored>(screen: &Screen, scene: &Scene, packed: &Packed, index: usize) -> Print
+where
+    F::Outline: Footprint,
+{
+    let (rect, near) = outline::<F>(packed, index).footprint(screen, || {
+        let id = Columns::<F>::id(F::columns(packed), index);
+        F::ball(
+            &F::geometry(scene.shapes.get(id as usize))?,
+            screen.view.eye,
+        )
+    });
+    Print {
+        near: near_f32(near),
+        prim: (F::KIND as u32) << KIND_SHIFT | index as u32,
+        rect: rect.unwrap_or(OFF_SCREEN),
+    }
+}
+
+/// The screen order of the primitives of `prints` (`counts[k]` of each kind `k` in turn, in
+/// `Family::KIND` order, each kind in the stores' order): per kind, by the first tile of the
+/// footprint's rectangle in row-major order (`tiles` tiles; off-screen footprints last), in store order
 /// within a tile. A counting sort in parallel chunks (per-chunk counts, their offsets, a
 /// per-chunk pass placing each footprint), the same at any thread count. Renumbers each
 /// footprint's index to its new place, leaving `prints` where it is. A kind whose consecutive
 /// primitives mostly start within a tile of each other already is in screen order, near
 /// enough, and is kept as it is (`None`).
-fn screen_order(prints: &mut [Print], counts: [usize; 2], cols: usize, tiles: usize) -> Order {
+fn screen_order(prints: &mut [Print], counts: [usize; 3], cols: usize, tiles: usize) -> Order {
     const CHUNK: usize = 1 << 16;
     let first = |e: &Print| {
         e.tiles()
             .map_or(tiles, |[tx, ty, ..]| ty as usize * cols + tx as usize)
     };
-    let (spheres, rest) = prints.split_at_mut(counts[0]);
-    let (triangles, quads) = rest.split_at_mut(counts[1]);
-    [spheres, triangles, quads].map(|kind| {
+    let mut rest = prints;
+    let kinds = counts.map(|n| {
+        let (kind, tail) = std::mem::take(&mut rest).split_at_mut(n);
+        rest = tail;
+        kind
+    });
+    kinds.map(|kind| {
         // already coherent on screen (a subdivided mesh): reordering would cost more in setup
         // than it saves in the render
         let close = kind
@@ -326,6 +315,9 @@ fn screen_order(prints: &mut [Print], counts: [usize; 2], cols: usize, tiles: us
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::kernel::{Family, Triangle};
+
+    const TRIANGLE: u32 = Triangle::KIND as u32;
 
     fn print(kind: u32, index: u32, rect: [u16; 4]) -> Print {
         Print {
@@ -360,7 +352,7 @@ mod tests {
             })
             .collect();
         prints.push(print(TRIANGLE, 8, OFF_SCREEN));
-        let order = screen_order(&mut prints, [0, 9], cols, cols * rows);
+        let order = screen_order(&mut prints, [0, 9, 0], cols, cols * rows);
         assert!(
             order[0].is_none() && order[2].is_none(),
             "no spheres, no quads"

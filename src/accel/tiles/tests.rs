@@ -4,11 +4,18 @@ use super::*;
 use crate::camera::Camera;
 use crate::kernel::packet::{BLOCK_H, BLOCK_W};
 use crate::kernel::polygon::polygon_x8;
+use crate::kernel::sphere::Sphere;
 use crate::kernel::sphere::sphere_x8;
+use crate::kernel::{Family, Quad, Triangle};
 use crate::real::V3;
 use crate::scene::{CameraSpec, Scene, Shape};
 use crate::soa::Prepared;
 use crate::test_rng::Rng;
+
+/// The entries' kinds (`Family::KIND`).
+const SPHERE: u32 = Sphere::KIND as u32;
+const TRIANGLE: u32 = Triangle::KIND as u32;
+const QUAD: u32 = Quad::KIND as u32;
 use glam::DVec3;
 
 /// Primitives of every kind and size around the eye: tiny and large, in front, crossing
