@@ -51,7 +51,7 @@
 //! rounded down), one blend per entry tested, so a packet's check is one compare. Only the tiles
 //! where some packet's hits may pass a trusted distance carry it: in setup, each entry's packets
 //! are bounded by the exact distances their rays may meet the primitive at
-//! (`PacketCones::sphere_beyond`, `PacketCones::polygon_beyond`; `Redecide::attach_to`), and
+//! (`PacketCones::ball_beyond`, `PacketCones::polygon_beyond`; `Redecide::attach_to`), and
 //! a tile none of whose packets may exceed walks as `--precision f32` does. Through the
 //! BVH or without acceleration a finished strip is scanned against the least trusted distance,
 //! and only the pixels beyond it look their limits up (`check.rs`). A re-decision walks that
@@ -66,7 +66,7 @@ use crate::par::prelude::*;
 use crate::scene::{Scene, Shape};
 use crate::soa::trace::ranges_x4d;
 use crate::soa::trace::trace_x1;
-use crate::soa::{Packed, Records, SceneRecords, Stored};
+use crate::soa::{Columns, Packed, Records, SceneRecords, Stored, for_each_family};
 use std::any::Any;
 use std::cell::RefCell;
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
@@ -76,7 +76,7 @@ mod bounds;
 mod check;
 mod verify;
 pub use bounds::TOLERANCE;
-use bounds::{BUDGET, Bounds};
+use bounds::{BUDGET, Bounds, Trusted};
 use verify::Oracle;
 
 /// What `--precision auto` needs beside the packet kernel's setup.
@@ -268,13 +268,13 @@ impl<'s> Redecide<'s> {
                 .map(|_| AtomicU64::new(pack([0.0, f32::INFINITY]))),
         );
         let put = |id: f32, l: [f32; 2]| limits[id as usize].store(pack(l), Ordering::Relaxed);
-        (s.id.par_iter().zip(bounds.spheres(s))).for_each(|(&id, l)| put(id, l));
-        for (ids, p) in [
-            (&packed.triangles.id, &packed.triangles.p),
-            (&packed.quads.id, &packed.quads.p),
-        ] {
-            (ids.par_iter().zip(p)).for_each(|(&id, &p)| put(id, bounds.polygon(p)));
-        }
+        // each family's through the bound of its outline class
+        for_each_family!(F => {
+            let columns = F::columns(packed);
+            let ids = Columns::<F>::ids(columns);
+            let outline = |i: usize| F::outline(&Columns::<F>::get(columns, i));
+            Trusted::each(&bounds, ids.len(), outline, |i, l| put(ids[i], l));
+        });
         // the least `hi` over the scene (-inf if any primitive needs `lo`): a pixel nearer
         // needs no lookup (the strip scan: the BVH and no acceleration; tiles carry each lane's)
         let safe = (packed.ids().into_iter())

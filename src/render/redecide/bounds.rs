@@ -56,9 +56,10 @@
 //! f32 ray against the oracle along the f64 ray, on grazing planes and on spheres near their
 //! silhouettes, with the eye outside and inside, through cameras turned off the axes.
 
+use crate::kernel::family::Ball;
+use crate::kernel::polygon::PolyK;
 use crate::par::prelude::*;
 use crate::real::{U32 as U, f32_down, f32_up};
-use crate::soa::Spheres;
 use wide::f64x4;
 
 /// The guarantee of `--precision auto`: every pixel's depth is within this relative distance
@@ -174,24 +175,54 @@ impl Bounds {
             (true, false) => [f32_up(hi[i]), f32::INFINITY],
         })
     }
+}
 
-    /// [`Bounds::spheres_x4`] for every sphere of `s`, in parallel, four per call (the last
-    /// one repeated to fill the last call).
-    pub(super) fn spheres(&self, s: &Spheres) -> Vec<[f32; 2]> {
-        (0..s.len().div_ceil(4))
+/// The distances at which a primitive's f32 hits are trusted, written once per outline class
+/// (`Family::Outline`: what the family's f32 constants bound, a ball or a convex polygon).
+pub(super) trait Trusted: Copy {
+    /// `put(i, limits)` for each primitive `i` in `0..n` of one store, whose outline is
+    /// `get(i)`, on all threads.
+    fn each(
+        bounds: &Bounds,
+        n: usize,
+        get: impl Fn(usize) -> Self + Sync,
+        put: impl Fn(usize, [f32; 2]) + Sync,
+    );
+}
+
+/// Balls ([`Bounds::spheres_x4`]), four per call (the last one repeated to fill the last call).
+impl Trusted for Ball {
+    fn each(
+        bounds: &Bounds,
+        n: usize,
+        get: impl Fn(usize) -> Ball + Sync,
+        put: impl Fn(usize, [f32; 2]) + Sync,
+    ) {
+        (0..n.div_ceil(4)).into_par_iter().for_each(|q| {
+            let lane = |l: usize| {
+                let b = get((4 * q + l).min(n - 1));
+                sphere_inputs(b.oc, b.r2, b.c)
+            };
+            let v: [(f64, f64, f64); 4] = std::array::from_fn(lane);
+            let limits = bounds.spheres_x4(v.map(|v| v.0), v.map(|v| v.1), v.map(|v| v.2));
+            for (l, limit) in limits.into_iter().enumerate().take((n - 4 * q).min(4)) {
+                put(4 * q + l, limit);
+            }
+        });
+    }
+}
+
+/// Convex polygons ([`Bounds::polygon`]: by their plane distance alone).
+impl<const N: usize> Trusted for PolyK<f32, N> {
+    fn each(
+        bounds: &Bounds,
+        n: usize,
+        get: impl Fn(usize) -> PolyK<f32, N> + Sync,
+        put: impl Fn(usize, [f32; 2]) + Sync,
+    ) {
+        (0..n)
             .into_par_iter()
-            .flat_map_iter(|q| {
-                let lane = |l: usize| {
-                    let i = (4 * q + l).min(s.len() - 1);
-                    sphere_inputs([s.ocx[i], s.ocy[i], s.ocz[i]], s.r2[i], s.c[i])
-                };
-                let v: [(f64, f64, f64); 4] = std::array::from_fn(lane);
-                let n = (s.len() - 4 * q).min(4);
-                self.spheres_x4(v.map(|v| v.0), v.map(|v| v.1), v.map(|v| v.2))
-                    .into_iter()
-                    .take(n)
-            })
-            .collect()
+            .for_each(|i| put(i, bounds.polygon(get(i).p)));
     }
 }
 
