@@ -22,6 +22,10 @@ pub mod camera {
 /// and 8-lane forms side by side, their f64x4 form; the nearest-hit records.
 pub mod kernel {
     pub use crate::kernel::{Family, Hit, Hit8, HitLanes, LANES, Quad, Sphere, Triangle, closer};
+    /// The classes a family is bounded and drawn by.
+    pub mod family {
+        pub use crate::kernel::family::{Ball, Bounded, Class, Polygon};
+    }
 
     /// The 8-ray packets' rays: a 4x2 pixel block's directions and live lanes.
     pub mod packet {
