@@ -121,7 +121,7 @@ fn kind_boxes<'a, F: Stored>(
     p: &'a Prepared<f64>,
     shapes: &'a crate::scene::Shapes,
     view: &'a View,
-) -> impl IndexedParallelIterator<Item = (Aabb, (u8, u32))> + 'a
+) -> impl IntoParallelIterator<Item = (Aabb, (u8, u32))> + 'a
 where
     F::Outline: Reach,
 {
