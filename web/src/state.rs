@@ -5,7 +5,7 @@
 use crate::engine::{self, Engine};
 use crate::report::Pick;
 use glam::DVec3;
-use lanecast::scene::{RangeClusters, Shape, parse_mesh_bytes, parse_scene_with};
+use lanecast::scene::{RangeClusters, parse_mesh_bytes, parse_scene_with};
 use lanecast::world::{self, World};
 use lanecast::{Camera, CameraSpec, ColorMode, Frame, Options, Renderer, Scene, Variation};
 use std::collections::HashMap;
