@@ -89,6 +89,9 @@ pub fn spec_from_matrices(
     })
 }
 
+/// The id band's width in pixels ([`Camera::id_band`]): an eighth of the smallest pixel.
+pub const ID_BAND_PIXELS: f64 = 0.125;
+
 /// A camera fixed to one image size.
 #[derive(Debug, Clone, Copy)]
 pub struct Camera {
@@ -267,6 +270,27 @@ impl Camera {
         }
         m[3] = [0.0, 0.0, 0.0, 1.0];
         m
+    }
+
+    /// The smallest angle, in radians, between the rays of two neighbouring pixel centres
+    /// anywhere in the image: a screen step `s` (`2 half_w / W` across, `2 half_h / H` down) at
+    /// screen radius `rho` turns the ray by at least `s / (1 + rho^2)` (the radial step; a
+    /// tangential one turns it by `s / sqrt(1 + rho^2)`), and `rho` is largest at a corner.
+    pub fn pixel_angle(&self) -> f64 {
+        let step =
+            (2.0 * self.half_w / self.width as f64).min(2.0 * self.half_h / self.height as f64);
+        let (rx, ry) = self.screen_reach();
+        step / (1.0 + rx * rx + ry * ry)
+    }
+
+    /// The id band of this view, in radians: a pixel whose ray passes within this angle of a
+    /// primitive's boundary (its true boundary, measured on the sphere of directions) may take
+    /// a neighbour's id in any precision other than f64, and `compare` excuses it there. It is
+    /// [`ID_BAND_PIXELS`] of [`Camera::pixel_angle`], so it scales with the view: a telephoto
+    /// camera's band is as many pixels wide as a wide-angle one's. `--precision auto` trusts
+    /// the f32 kernels only where their own error stays inside it (`render::redecide`).
+    pub fn id_band(&self) -> f64 {
+        ID_BAND_PIXELS * self.pixel_angle()
     }
 
     /// A bound, in radians, on the angle between any pixel's f32 ray direction and its f64 one

@@ -42,8 +42,7 @@ fn judge(scene: &Scene, w: u32, h: u32, oracle: &Frame<f64>, got: &Frame<f32>) -
                 let rel = (got.depth[i] as f64 - oracle.depth[i]).abs() / oracle.depth[i];
                 f.depth_rel_max = f.depth_rel_max.max(rel);
             }
-        } else if classify_within(scene, camera.eye, tables.dir_x1(x, y), a, b, EDGE_BAND)
-            == UNEXCUSED
+        } else if classify_within(scene, &camera, tables.dir_x1(x, y), a, b, EDGE_BAND) == UNEXCUSED
         {
             f.unexcused.push((x, y, a, b));
         }

@@ -58,6 +58,17 @@ pub trait Family: 'static {
     /// within a band of an edge or silhouette from a clear mismatch.
     fn hit_with_slack(g: &Self::Geometry, eye: DVec3, d: V3<f64>, slack: f64) -> Option<f64>;
 
+    /// Whether the unit direction `d` from `eye` passes within `band` radians of the
+    /// primitive's boundary as seen from `eye` (its true outline on the sphere of directions):
+    /// the rays `compare` excuses at an edge. By default, where [`Family::hit_with_slack`]
+    /// with the boundary moved out by `band` and in by `band` disagree, which is that distance
+    /// for an outline without corners (a sphere's silhouette); a polygon measures its distance
+    /// to each edge's arc, since moving its edges out moves a sharp corner much further.
+    fn near_boundary(g: &Self::Geometry, eye: DVec3, d: V3<f64>, band: f64) -> bool {
+        Self::hit_with_slack(g, eye, d, band).is_some()
+            != Self::hit_with_slack(g, eye, d, -band).is_some()
+    }
+
     /// The plane of a flat primitive seen from `eye`, as its f64 constants hold it (unit normal
     /// pointing away from the eye, distance from the eye), bit for bit; `None` for a curved
     /// one. `--precision auto` measures a polygon's f32 hit against its plane alone.

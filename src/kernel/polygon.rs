@@ -41,8 +41,8 @@
 //! `--precision auto` turns this bound into its re-decision rule (`render::redecide`): a hit
 //! whose bound exceeds 0.9e-5 relative is decided again in f64, which guarantees every depth
 //! within 1e-5 of the oracle's (docs/precision.md; `tests/auto.rs`).
-//! Known to fail: a polygon seen exactly edge-on (O in its plane) is never hit (it has no area
-//! on screen), nor is one with an edge whose ends are parallel seen from O (no edge plane:
+//! Known to fail: a polygon seen edge-on (every point of it within [`EDGE_ON_SINE`] of the
+//! eye's horizon of its plane: no pixel's worth of area) is never hit, nor is one with an edge whose ends are parallel seen from O (no edge plane:
 //! `tests::collapsed_edge_is_dropped`); the eye within ~u|V - O| of an edge's line gives an ill-conditioned edge plane.
 
 use crate::kernel::edge_eps;
@@ -57,10 +57,46 @@ use wide::f32x8;
 pub mod triangle_setup;
 use triangle_setup::triangles_x4;
 
-/// Polygons whose plane passes within this sine of the eye's line of sight to a vertex are
-/// treated as seen edge-on and never drawn: 1e-12 is ~4000 times the f64 rounding of that
-/// sine, and a polygon seen at 1e-12 rad covers 1e-12 of its size on screen.
+/// A polygon every point of which lies within this sine of the eye's horizon of its plane (the
+/// plane through the eye parallel to it) is treated as seen edge-on and never drawn: every ray
+/// that could meet it passes within 1e-12 rad of its plane, a band no pixel resolves (the
+/// narrowest view the limits accept has pixels of ~1e-8 rad), and 1e-12 is ~4000 times the
+/// f64 rounding of that sine. The sine is the eye's height over the plane divided by its
+/// distance to the polygon's nearest point ([`elevation_sine`]), not to one vertex: an eye
+/// just above a polygon's interior sees it covering half the sky.
 pub const EDGE_ON_SINE: f64 = 1e-12;
+
+/// The sine of the largest elevation, seen from the eye, of any point of the convex polygon
+/// with eye-relative vertices `rel` over the eye's horizon of its plane (unit normal `nrm`):
+/// `h / dist`, `h` the eye's height over the plane and `dist` its distance to the polygon's
+/// nearest point. 1 when the eye's foot on the plane is inside the polygon. In f64: the foot
+/// and the in-plane vertices `q_i = r_i - (r_i . N) N` err by ~u |r_i|, so the sine errs by
+/// ~u |r| / dist relative, far below the 1e-12 it is compared with wherever `dist` is not
+/// itself at rounding level. NaN when a vertex is not finite.
+pub fn elevation_sine<const N: usize>(rel: &[DVec3; N], nrm: DVec3) -> f64 {
+    let h = (rel.iter().map(|r| r.dot(nrm)).sum::<f64>() / N as f64).abs();
+    let q = rel.map(|r| r - nrm * r.dot(nrm));
+    // the foot (the origin of `q`) inside: every edge turns the same way around it
+    let turn = |i: usize| q[i].cross(q[(i + 1) % N]).dot(nrm);
+    let (pos, neg) = (0..N).fold((true, true), |(p, n), i| {
+        let w = turn(i);
+        (p && w >= 0.0, n && w <= 0.0)
+    });
+    if pos || neg {
+        return if h > 0.0 { 1.0 } else { 0.0 };
+    }
+    // else the nearest point is on an edge
+    let along = (0..N)
+        .map(|i| {
+            let (a, b) = (q[i], q[(i + 1) % N]);
+            let e = b - a;
+            let s = (-a.dot(e) / e.length_squared()).clamp(0.0, 1.0);
+            let s = if s.is_finite() { s } else { 0.0 };
+            (a + e * s).length_squared()
+        })
+        .fold(f64::INFINITY, f64::min);
+    h / (h * h + along).sqrt()
+}
 
 /// One convex polygon's eye-relative constants: `N` edge planes and the polygon's plane.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -93,7 +129,12 @@ impl<const N: usize> PolyK<f64, N> {
         // plane below EDGE_ON_SINE): no pixel's worth of area, and edge planes that f32 rounding
         // can turn into a wedge over empty pixels (found by the accuracy lab on an icosphere
         // whose vertices were snapped onto pixel rays: sine 5.6e-17, false hits at t = 2.5e-8).
-        if !facing.is_finite() || facing.abs() <= EDGE_ON_SINE * len[0] * raw_len {
+        // (a NaN sine, from a vertex that is not finite, is edge-on too)
+        let edge_on = |sine: f64| sine.is_nan() || sine <= EDGE_ON_SINE;
+        if !facing.is_finite()
+            || facing.abs() <= EDGE_ON_SINE * len[0] * raw_len
+                && edge_on(elevation_sine(&rel, raw_normal * (1.0 / raw_len)))
+        {
             return None;
         }
         let s = facing.signum();
@@ -233,6 +274,9 @@ impl Family for Triangle {
     fn hit_with_slack(v: &[DVec3; 3], eye: DVec3, d: V3<f64>, slack: f64) -> Option<f64> {
         polygon_x1_within(&TriangleK::triangle(v, eye)?, d, edge_eps::<f64>() + slack)
     }
+    fn near_boundary(v: &[DVec3; 3], eye: DVec3, d: V3<f64>, band: f64) -> bool {
+        edge_angle(v, eye, d) <= band
+    }
     fn plane(v: &[DVec3; 3], eye: DVec3) -> Option<(V3<f64>, f64)> {
         Some(TriangleK::triangle_plane(v, eye))
     }
@@ -294,6 +338,9 @@ impl Family for Quad {
     fn hit_with_slack(v: &[DVec3; 4], eye: DVec3, d: V3<f64>, slack: f64) -> Option<f64> {
         polygon_x1_within(&QuadK::quad(v, eye)?, d, edge_eps::<f64>() + slack)
     }
+    fn near_boundary(v: &[DVec3; 4], eye: DVec3, d: V3<f64>, band: f64) -> bool {
+        edge_angle(v, eye, d) <= band
+    }
     fn plane(v: &[DVec3; 4], eye: DVec3) -> Option<(V3<f64>, f64)> {
         Some(QuadK::quad_plane(v, eye))
     }
@@ -320,6 +367,29 @@ impl Family for Quad {
     fn hit_lanes_all<L: Lanes>(k: &QuadK<L::Scalar>, d: &[L; 3]) -> (L, L) {
         polygon_lanes_all(k, d)
     }
+}
+
+/// The angle, in radians, between the unit direction `d` and the nearest point of the outline
+/// of the convex polygon `v` seen from `eye`, on the sphere of directions: each edge is the
+/// minor arc between its ends' directions `w_i`, `w_i+1` (a segment not through the eye seen
+/// from it), and the angle to an arc is `asin |d . n|` (`n` the arc's unit plane normal)
+/// where `d` projects inside the arc, else the angle to the nearer end. In f64, to ~u radians
+/// where the arc is longer than ~u; NaN for a degenerate edge, which counts as far.
+pub fn edge_angle<const N: usize>(v: &[DVec3; N], eye: DVec3, d: V3<f64>) -> f64 {
+    let d = DVec3::from_array(d);
+    let w = v.map(|p| (p - eye).normalize());
+    (0..N)
+        .map(|i| {
+            let (a, b) = (w[i], w[(i + 1) % N]);
+            let n = a.cross(b).normalize();
+            let e = d - n * d.dot(n);
+            if a.cross(e).dot(n) >= 0.0 && e.cross(b).dot(n) >= 0.0 && e.dot(a + b) > 0.0 {
+                d.dot(n).abs().min(1.0).asin()
+            } else {
+                d.angle_between(a).min(d.angle_between(b))
+            }
+        })
+        .fold(f64::INFINITY, f64::min)
 }
 
 /// Distance to the polygon along unit direction `d`, when it is hit ahead of the eye.

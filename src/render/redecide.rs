@@ -76,7 +76,8 @@ mod bounds;
 mod check;
 mod verify;
 pub use bounds::TOLERANCE;
-use bounds::{BUDGET, Bounds, Trusted};
+pub use bounds::f32_resolves;
+use bounds::{BUDGET, Bounds, Trusted, is_sharp};
 use verify::Oracle;
 
 /// What `--precision auto` needs beside the packet kernel's setup.
@@ -257,7 +258,7 @@ impl<'s> Redecide<'s> {
             mut limits,
             plane_at,
         } = spare;
-        let bounds = Bounds::new(camera.direction_error());
+        let bounds = Bounds::new(camera.direction_error(), camera.id_band());
         let s = &packed.spheres;
         // each primitive's limits written at its id, on all threads (the ids of the stores
         // are distinct: each cell is written once at most)
@@ -367,9 +368,11 @@ impl<'s> Redecide<'s> {
             v.par_extend(crate::par::repeat_n(u32::MAX, n));
         }
         for (&(kind, i), plane) in polygons.iter().zip(found) {
-            // (a polygon's shape is always one)
+            // (a polygon's shape is always one; a sharp one's plane is left all zeros, so its
+            // measurement asks `make_oracle`, which refuses it)
+            let sharp = is_sharp(unpack(&self.limits[ids[kind][i] as usize]));
             self.plane_at[kind - 1][i] = self.planes[kind - 1].len() as u32;
-            self.planes[kind - 1].push(plane.unwrap_or_default());
+            self.planes[kind - 1].push(plane.filter(|_| !sharp).unwrap_or_default());
         }
     }
 

@@ -66,8 +66,10 @@ pub struct Renderer<'s> {
 
 enum Job<'s> {
     Setup(Box<Setup>, Option<Box<Redecide<'s>>>),
-    /// f64x4 packets (`--precision f64`).
-    Wide64(Box<Kit64>),
+    /// f64x4 packets (`--precision f64`; `--precision auto` for a view the f32 kernels do not
+    /// resolve, `redecide::f32_resolves`, when the flag is set: every pixel then counts as
+    /// decided again in f64).
+    Wide64(Box<Kit64>, bool),
     /// `--accel world`: the prepared scene (shared by every view), the camera, the precision
     /// and the view's working buffers.
     World(
@@ -126,9 +128,10 @@ impl<'s> Renderer<'s> {
                     left_out,
                 ));
             }
-            (Kernel::Packet, Precision::F64) => {
-                Job::Wide64(Box::new(Kit64::with_accel(scene, camera, options.accel)))
-            }
+            (Kernel::Packet, Precision::F64) => Job::Wide64(
+                Box::new(Kit64::with_accel(scene, camera, options.accel)),
+                false,
+            ),
             (kernel, precision) => Job::Setup(
                 Box::new(Setup::with_accel_in(
                     Plain::of(kernel, precision).expect("a plain kernel"),
@@ -158,7 +161,11 @@ impl<'s> Renderer<'s> {
         options: &Options,
         spare: Spare,
     ) -> Renderer<'s> {
-        let precision = options.precision;
+        let precision = match options.precision {
+            // a telephoto view: the f32 kernels' edge band is a sizeable part of a pixel
+            Precision::Auto if !super::redecide::f32_resolves(camera) => Precision::F64,
+            p => p,
+        };
         Renderer {
             width: camera.width as usize,
             height: camera.height as usize,
@@ -178,7 +185,7 @@ impl<'s> Renderer<'s> {
                 },
                 redo.map(|r| r.into_spare()).unwrap_or_default(),
             ),
-            Job::Wide64(_) | Job::World(..) => Default::default(),
+            Job::Wide64(..) | Job::World(..) => Default::default(),
         };
         Spare {
             frame,
@@ -211,6 +218,15 @@ impl<'s> Renderer<'s> {
         spare: Spare,
         left_out: Option<&IdSet>,
     ) -> Renderer<'s> {
+        if !super::redecide::f32_resolves(camera) {
+            // a telephoto view: the f32 kernels' edge band is a sizeable part of a pixel
+            return Renderer {
+                width: camera.width as usize,
+                height: camera.height as usize,
+                job: Job::Wide64(Box::new(Kit64::with_accel(scene, camera, accel)), true),
+                spare: Mutex::new(spare.frame),
+            };
+        }
         let mut p = PacketScene::new_in(scene, camera, accel, spare.scene, spare.keep, left_out);
         let mut redecide = Redecide::new_in(scene, camera, &p.packed, spare.redecide);
         if let Some(tiles) = &mut p.tiles {
@@ -232,7 +248,7 @@ impl<'s> Renderer<'s> {
     pub fn accel(&self) -> Accel {
         match &self.job {
             Job::Setup(s, _) => s.accel(),
-            Job::Wide64(k) => k.accel(),
+            Job::Wide64(k, _) => k.accel(),
             Job::World(..) => Accel::World,
         }
     }
@@ -240,7 +256,7 @@ impl<'s> Renderer<'s> {
     /// Whether f32 hits that cannot be trusted are decided again in f64 (`--precision auto`
     /// with the packet kernel).
     pub fn redecides(&self) -> bool {
-        matches!(self.job, Job::Setup(_, Some(_)))
+        matches!(self.job, Job::Setup(_, Some(_)) | Job::Wide64(_, true))
             || matches!(self.job, Job::World(_, _, world::Precision::Auto, _))
     }
 
@@ -292,7 +308,8 @@ impl<'s> Renderer<'s> {
                 }
                 other => (other.render_counting(w, h, progress), Vec::new()),
             },
-            Job::Wide64(k) => (f32_depth(k.render()), Vec::new()),
+            Job::Wide64(k, false) => (f32_depth(k.render()), Vec::new()),
+            Job::Wide64(k, true) => (f32_depth(k.render()), (0..w * h).collect()),
             Job::World(world, camera, precision, scratch) => {
                 let mut scratch = scratch.lock().unwrap_or_else(|e| e.into_inner());
                 world.render_marking(camera, *precision, &mut scratch, spare())

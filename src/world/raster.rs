@@ -610,6 +610,12 @@ fn raster_polygon<P: Polygon<N>, const N: usize>(
     }
     let k = setup::polygon::<P, N>(a, g, &view.basis);
     st.polys.push((P::KIND as u8, i, id, bx));
+    if k.class == setup::Class::Opaque {
+        if let Some(k) = P::setup(&v.map(|i| verts[i as usize]), view.eye) {
+            by_kernel::<P>(&k, id, bx, view, st);
+        }
+        return;
+    }
     match picked {
         Some(n) => {
             for &j in &cand[..n] {
@@ -685,7 +691,16 @@ fn raster_bounded<F: Bounded>(others: &Others, j: usize, view: &View, st: &mut B
     };
     let id = others.ids[j];
     st.others.push((F::KIND as u8, j as u32, id, bx));
-    let k = F::cast::<f32>(&k);
+    by_kernel::<F>(&k, id, bx, view, st);
+}
+
+/// Every pixel of box `bx` flagged for the f64 re-decision, and the primitive with the
+/// oracle's constants `k` tested there with its family's f32 kernel ([`Family::hit_x1`]), its
+/// hits kept meanwhile: a bounded family's primitives, and a polygon whose projected
+/// constants are not usable ([`setup::Class::Opaque`]: seen from near its plane, say), so that
+/// `--precision f32` draws it too.
+fn by_kernel<F: Family>(k: &F::K<f64>, id: i32, bx: [u16; 4], view: &View, st: &mut Band) {
+    let k = F::cast::<f32>(k);
     let (x0, x1) = (bx[0] as usize, bx[1] as usize);
     for y in st.rows(bx) {
         let row = (y - st.y0) * st.x;

@@ -112,7 +112,13 @@ pub fn triangles_x4(tris: &[[DVec3; 3]; 4], eye: DVec3) -> [Option<TriangleK<f64
     }
     ok &= bits(p.simd_gt(f64x4::ZERO)) & finite(p) & finite(nrm.x) & finite(nrm.y) & finite(nrm.z);
     let (p, n, nrm) = (p.to_array(), n.map(|e| e.lanes()), nrm.lanes());
+    // a lane whose vertex A lies near the eye's horizon of its plane takes the scalar form,
+    // which asks for the polygon's nearest point (rare: an eye near a triangle's plane)
+    let near_plane = bits(edge_on) & finite(facing);
     std::array::from_fn(|k| {
+        if near_plane >> k & 1 == 1 {
+            return TriangleK::triangle(&tris[k], eye);
+        }
         (ok >> k & 1 == 1).then(|| PolyK {
             n: n.map(|e| e[k]),
             nrm: nrm[k],

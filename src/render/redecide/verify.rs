@@ -251,9 +251,13 @@ impl Redecide<'_> {
         }
     }
 
-    /// The oracle's constants of primitive `id`, computed.
+    /// The oracle's constants of primitive `id`, computed; `None` for a sharp polygon
+    /// (`bounds`, "Ids"), whose hits are never kept on their distance alone.
     #[inline(never)]
     fn make_oracle(&self, id: usize) -> Option<Oracle> {
+        if super::is_sharp(super::unpack(&self.limits[id])) {
+            return None;
+        }
         match self.scene.shapes.get(id) {
             Shape::Sphere { center, radius } => Some(Oracle::Sphere(SphereK::new(
                 center,
