@@ -255,3 +255,54 @@ fn sphere_lanes_of_four_spheres_are_the_oracle_bit_for_bit() {
     }
     assert!(hits > 500 && misses > 100, "{hits} hits, {misses} misses");
 }
+
+/// A sharp polygon's padded constants decide every ray as its family's own f64 kernel does,
+/// bit for bit: random triangles and quads (parallelograms) at scales 1e-3 to 1e6, eyes near
+/// and far, rays towards and around them.
+#[test]
+fn sharp_constants_are_the_familys_kernel_bit_for_bit() {
+    use crate::kernel::polygon::QuadK;
+    let mut rng = crate::test_rng::Rng(0x5AA7_C0DE_0000_0001);
+    let mut unit = || rng.unit() - 0.5;
+    let (mut hits, mut rays) = (0, 0);
+    for case in 0..2000 {
+        let scale = 10f64.powf(unit() * 9.0 + 1.5);
+        let base = DVec3::new(unit(), unit(), unit()) * scale * 10.0;
+        let eye = base + DVec3::new(unit(), unit(), unit()) * scale * 4.0;
+        let mut p = || base + DVec3::new(unit(), unit(), unit()) * scale;
+        let (a, b, c) = (p(), p(), p());
+        let tri = Shape::Triangle([a, b, c]);
+        let quad = Shape::Quad([a, b, c, a + c - b]);
+        for _ in 0..20 {
+            let towards = (a + (b - a) * (unit() + 0.5) + (c - a) * (unit() + 0.5)) - eye;
+            let d = towards.normalize().to_array();
+            let ours = |s: Shape| sharp_constants(s, eye).and_then(|k| polygon_x1(&k, d));
+            let theirs_t = TriangleK::triangle(&[a, b, c], eye).and_then(|k| polygon_x1(&k, d));
+            let theirs_q = QuadK::quad(&[a, b, c, a + c - b], eye).and_then(|k| polygon_x1(&k, d));
+            assert_eq!(
+                ours(tri).map(f64::to_bits),
+                theirs_t.map(f64::to_bits),
+                "case {case}"
+            );
+            assert_eq!(
+                ours(quad).map(f64::to_bits),
+                theirs_q.map(f64::to_bits),
+                "case {case}"
+            );
+            hits += usize::from(theirs_t.is_some()) + usize::from(theirs_q.is_some());
+            rays += 2;
+        }
+    }
+    // (both sides of every edge are met)
+    assert!(hits > rays / 5 && hits < rays * 4 / 5, "{hits} of {rays}");
+    assert!(
+        sharp_constants(
+            Shape::Sphere {
+                center: DVec3::ZERO,
+                radius: 1.0
+            },
+            DVec3::X * 5.0
+        )
+        .is_none()
+    );
+}
