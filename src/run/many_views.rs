@@ -24,15 +24,18 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::Ordering;
 use std::time::Instant;
 
-/// One numbered output: its flag, pattern and kind.
+/// One numbered output: its flag, pattern (and its text as given) and kind.
 struct Numbered {
     flag: &'static str,
     pattern: Pattern,
+    /// The pattern as typed (`frames/view_%05d.png`): what `--stats` records as the run's
+    /// output.
+    typed: PathBuf,
     kind: OutputKind,
 }
 
-/// The numbered outputs of `s`: the image (unless it goes to standard output), ids, depth,
-/// z-depth, normals.
+/// The numbered outputs of `s`: the image (unless it goes to standard output or none is
+/// asked for), ids, depth, z-depth, normals.
 fn numbered(s: &RenderSettings) -> Result<Vec<Numbered>> {
     let mut outs = Vec::new();
     let mut add = |flag, path: &Path, kind| -> Result<()> {
@@ -40,12 +43,13 @@ fn numbered(s: &RenderSettings) -> Result<Vec<Numbered>> {
         outs.push(Numbered {
             flag,
             pattern,
+            typed: path.to_path_buf(),
             kind,
         });
         Ok(())
     };
-    if s.stdout_format.is_none() {
-        add("--output", &s.output, OutputKind::Image)?;
+    if let Some(p) = s.image_file() {
+        add("--output", p, OutputKind::Image)?;
     }
     if let Some(p) = &s.ids {
         add("--ids", p, OutputKind::Npy)?;
@@ -242,7 +246,7 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
     let checked = secs(clock.elapsed());
     let outputs = outs
         .iter()
-        .map(|o| (stats_key(o.flag), o.pattern.name(0).display().to_string()))
+        .map(|o| (stats_key(o.flag), o.typed.display().to_string()))
         .chain(s.stats.iter().map(|p| ("stats", p.display().to_string())));
     let mut stats = Stats {
         primitives: scene.counts(),
@@ -310,7 +314,11 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
             stats.threads = crate::par::current_num_threads();
             stats.renders.push(time.render_s);
             let clock = Instant::now();
-            let rgb = shade_frame(s, &frame, &scene, camera);
+            // no image asked for (buffers only): nothing to shade
+            let rgb = match s.writes_image() {
+                true => shade_frame(s, &frame, &scene, camera),
+                false => Vec::new(),
+            };
             write_frame(&mut set, s, (&frame, &scene, camera), &rgb)?;
             set.commit()?;
             views.recycle(frame);
