@@ -172,9 +172,10 @@ pub(super) struct RenderArgs {
     /// point, at its distance and height. Outputs as with --views.
     #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = orbit_views)]
     pub(super) orbit: Option<u32>,
-    /// With --orbit: write the views file of the orbit's cameras to FILE (numbers in full, so
-    /// --views FILE renders the same views bit for bit).
-    #[arg(long, value_name = "FILE")]
+    /// With --orbit: write the views file of the orbit's cameras to FILE.txt (numbers in full,
+    /// so --views FILE.txt renders the same views bit for bit); an existing file is replaced
+    /// only when it is a views file.
+    #[arg(long, value_name = "FILE.txt")]
     pub(super) save_views: Option<PathBuf>,
     /// With --views or --orbit: leave out every view whose outputs all exist (a rerun picks up
     /// where an interrupted run stopped).

@@ -55,8 +55,8 @@ pub enum OutputKind {
     Npy,
     /// A JSON record: `.json`.
     Json,
-    /// Text under any name (`--save-views`).
-    Text,
+    /// A views file, text: `.txt` (`--save-views`).
+    Views,
 }
 
 impl OutputKind {
@@ -71,7 +71,7 @@ impl OutputKind {
             OutputKind::Image => matches!(ext.as_deref(), Some("png" | "bmp")),
             OutputKind::Npy => ext.as_deref() == Some("npy"),
             OutputKind::Json => ext.as_deref() == Some("json"),
-            OutputKind::Text => true,
+            OutputKind::Views => ext.as_deref() == Some("txt"),
         };
         if ok {
             return Ok(());
@@ -80,7 +80,7 @@ impl OutputKind {
             OutputKind::Image => "unsupported image format; the name must end in .png or .bmp",
             OutputKind::Npy => "written as NumPy data; the name must end in .npy",
             OutputKind::Json => "written as JSON; the name must end in .json",
-            OutputKind::Text => unreachable!("text takes any name"),
+            OutputKind::Views => "written as a views file (text); the name must end in .txt",
         };
         Err(Error::usage(format!("{flag} {}: {what}", path.display())))
     }
@@ -119,6 +119,7 @@ fn action(flag: &str) -> &'static str {
         "--zdepth" => "write the --zdepth file",
         "--normals" => "write the --normals file",
         "--stats" => "write the --stats file",
+        "--save-views" => "write the --save-views file",
         _ => "write output",
     }
 }

@@ -155,13 +155,17 @@ fn cameras(
     }
 }
 
-/// The `--save-views` file's name checked against every file the run reads and writes.
+/// The `--save-views` file's name checked: its extension (`.txt`), against every file the run
+/// reads and writes, and, when it exists, its content: only a views file (one that
+/// `load_views` reads without error) is replaced, so a mesh, an image or notes are never
+/// written over.
 fn check_save_views(
     p: &Path,
     reads: &[(&str, &Path)],
     names: &[Vec<PathBuf>],
     stats: Option<&Path>,
 ) -> Result<()> {
+    OutputKind::Views.check_extension("--save-views", p)?;
     output::check_not_read("--save-views", p, reads.iter().copied())?;
     let id = output::identity(p);
     let clash = (names.iter().flatten().map(PathBuf::as_path))
@@ -174,7 +178,25 @@ fn check_save_views(
             clash.display()
         )));
     }
-    Ok(())
+    match std::fs::metadata(p) {
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
+        Err(e) => Err(Error::io(
+            p,
+            "read the --save-views file it would replace",
+            e,
+        )),
+        // a folder or another non-file: `OutputSet::create` refuses it
+        Ok(m) if !m.is_file() => Ok(()),
+        Ok(_) => match load_views(p) {
+            Ok(_) => Ok(()),
+            Err(e @ Error::Io { .. }) => Err(e),
+            Err(e) => Err(Error::usage(format!(
+                "--save-views {}: exists and is not a views file ({e}); refusing to replace \
+                 it: remove it, or name another file",
+                p.display()
+            ))),
+        },
+    }
 }
 
 /// Runs the render command over many views.
@@ -261,7 +283,7 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
             s.view.width, s.view.height
         );
         let text = crate::scene::cameras::write_views(&specs, &header);
-        let mut set = OutputSet::create(&[("--save-views", p, OutputKind::Text)], &stats_reads)?;
+        let mut set = OutputSet::create(&[("--save-views", p, OutputKind::Views)], &stats_reads)?;
         set.write_bytes("--save-views", text.as_bytes())?;
         set.commit()?;
     }
