@@ -13,10 +13,10 @@ Examples:
   lanecast -i scenes/bunny.sc -cm shade --zdepth z.npy --normals n.npy
   lanecast compare -i scene1.sc -size 1920x1080 -o diff.png
 
-Exit codes: 0 success, 2 bad usage or bad input (message names the file and line, or the
-argument), 75 an output folder another run kept locked longer than LANECAST_LOCK_WAIT seconds
-(default 30; nothing written), 130 interrupted, 1 anything else (I/O errors, a failed
-comparison).";
+Exit codes: 0 success (also when the reader of stdout or stderr closes the pipe), 2 bad usage
+or bad input (message names the file and line, or the argument), 75 an output folder another
+run kept locked longer than LANECAST_LOCK_WAIT seconds (default 30; nothing written), 130
+interrupted, 1 anything else (I/O errors, stdout or stderr full, a failed comparison).";
 
 #[derive(Parser, Debug)]
 #[command(

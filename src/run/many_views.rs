@@ -244,7 +244,7 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
         check_save_views(p, &stats_reads, &names, s.stats.as_deref())?;
     }
     for w in &scene.warnings {
-        eprintln!("lanecast: warning: {w}");
+        super::say::warn(w)?;
     }
     let mut scene = scene;
     super::frame_mesh_alone(&mut scene, &s.view, matches!(source, ViewSource::Orbit(_)));
@@ -366,7 +366,11 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
         set.commit()?;
     }
     if s.time {
-        eprint!("{}", stats.text());
+        super::say::write(
+            super::say::Stream::Stderr,
+            "write the -time report",
+            &stats.text(),
+        )?;
     }
     Ok(())
 }

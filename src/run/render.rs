@@ -224,7 +224,11 @@ pub(crate) fn render_command(s: &RenderSettings) -> Result<()> {
         encode_to_stdout(format, s.view.width, s.view.height, &rgb)?;
     }
     if s.time {
-        eprint!("{}", stats.text());
+        super::say::write(
+            super::say::Stream::Stderr,
+            "write the -time report",
+            &stats.text(),
+        )?;
     }
     Ok(())
 }
