@@ -225,7 +225,7 @@ impl Stats {
             let _ = writeln!(
                 out,
                 "  no view rendered: all {} skipped (--skip-existing found their outputs \
-                 complete)",
+                 complete, made by these settings)",
                 v.skipped
             );
         } else if let Some(v) = &self.views {

@@ -177,8 +177,9 @@ pub(super) struct RenderArgs {
     /// only when it is a views file.
     #[arg(long, value_name = "FILE.txt")]
     pub(super) save_views: Option<PathBuf>,
-    /// With --views or --orbit: leave out every view whose outputs all exist (a rerun picks up
-    /// where an interrupted run stopped).
+    /// With --views or --orbit: leave out every view whose files are whole and were made by
+    /// this scene, camera, size, precision and output settings, as the record written beside
+    /// them says (a rerun picks up where an interrupted run stopped).
     #[arg(long)]
     pub(super) skip_existing: bool,
 }

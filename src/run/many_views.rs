@@ -8,6 +8,7 @@
 //! range rule (`scene::range::f32_range`, relative to that eye). A bad view stops the run
 //! with nothing written.
 
+use super::record;
 use super::render::{
     check_memory, encode_to_stdout, run_stats, shade_frame, stats_key, write_frame,
 };
@@ -87,6 +88,14 @@ fn names(
                 &path,
                 reads.iter().map(|(w, p)| (w.as_str(), p.as_path())),
             )?;
+            if paths.is_empty() {
+                // the view's record, beside its first output
+                output::check_not_read(
+                    o.flag,
+                    &record::path_for(&path),
+                    reads.iter().map(|(w, p)| (w.as_str(), p.as_path())),
+                )?;
+            }
             if let Some((other, flag)) = seen.insert(output::identity(&path), (v, o.flag)) {
                 return Err(Error::usage(format!(
                     "{} {}: view {v} and view {other} ({flag}) would both write {}; the \
@@ -304,21 +313,33 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
     let loop_start = Instant::now();
     let mut times = ViewTimes::default();
     let flags: Vec<(&'static str, OutputKind)> = outs.iter().map(|o| (o.flag, o.kind)).collect();
+    // what every view's record holds but its camera and files
+    let run_lines = record::run_lines(s, &scene, s.image_file().is_some());
     // the progress line (a terminal only, past a second) counts views
     progress::with_progress(cameras.len(), |done| -> Result<()> {
-        for (k, (_, camera)) in cameras.iter().enumerate() {
+        for (k, (spec, camera)) in cameras.iter().enumerate() {
             let paths = &names[k];
-            if s.skip_existing && !paths.is_empty() && complete(&flags, paths, s) {
+            let files: Vec<(&'static str, &Path)> = (flags.iter().zip(paths))
+                .map(|(&(flag, _), p)| (flag, p.as_path()))
+                .collect();
+            // beside the first file (none with -o - alone, which --skip-existing refuses)
+            let record = paths.first().map(|p| record::path_for(p));
+            if s.skip_existing
+                && let Some(r) = &record
+                && complete(&flags, paths, s)
+                && record::matches(r, &run_lines, spec, &files)
+            {
                 stats.poses[k].skipped = true;
                 times.skipped += 1;
                 done.fetch_add(1, Ordering::Relaxed);
                 continue;
             }
-            let outputs: Vec<(&'static str, &Path, OutputKind)> = flags
+            let mut outputs: Vec<(&'static str, &Path, OutputKind)> = flags
                 .iter()
                 .zip(paths)
                 .map(|(&(flag, kind), p)| (flag, p.as_path(), kind))
                 .collect();
+            outputs.extend(record.as_deref().map(record::output));
             let mut set = OutputSet::create(&outputs, &[])?;
             let view = views.render_marking(camera)?;
             let mut time = ViewTime {
@@ -342,6 +363,9 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
                 false => Vec::new(),
             };
             write_frame(&mut set, s, (&frame, &scene, camera), &rgb)?;
+            if record.is_some() {
+                record::write(&mut set, &run_lines, spec, &files)?;
+            }
             set.commit()?;
             views.recycle(frame);
             let sent = match s.stdout_format {
@@ -377,7 +401,8 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
 
 /// Whether every output of a view (`paths`, one for each of `flags`) is already a whole file
 /// of this run's size: a view with a missing, empty, truncated or other-sized output is
-/// rendered again by `--skip-existing`.
+/// rendered again by `--skip-existing` (and one whose files are whole, but whose record does
+/// not say this run made them: `record::matches`).
 fn complete(flags: &[(&'static str, OutputKind)], paths: &[PathBuf], s: &RenderSettings) -> bool {
     flags.iter().zip(paths).all(|(&(flag, kind), path)| {
         let what = match (kind, flag) {

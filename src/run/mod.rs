@@ -4,6 +4,7 @@
 
 mod compare;
 mod many_views;
+mod record;
 mod render;
 mod say;
 

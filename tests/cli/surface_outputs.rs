@@ -276,7 +276,19 @@ fn bad_normals_and_zdepth_names_are_refused_with_nothing_written() {
             "z%d.npy",
         ],
     );
-    assert_eq!(dir.entries(), ["b.sc", "n.npy", "sub", "z0.npy", "z1.npy"]);
+    // each view's file with its record, which --skip-existing reads
+    assert_eq!(
+        dir.entries(),
+        [
+            ".z0.npy.lanecast-view",
+            ".z1.npy.lanecast-view",
+            "b.sc",
+            "n.npy",
+            "sub",
+            "z0.npy",
+            "z1.npy"
+        ]
+    );
 }
 
 /// Many views number the new outputs with the others; `--skip-existing` renders again exactly

@@ -257,7 +257,8 @@ fn a_view_out_of_range_is_refused_before_anything_renders() {
         &["-i", scene, "--orbit", "12", "-o", "o%02d.png"],
     );
     assert_success(&o, "scene 6 orbit");
-    assert_eq!(dir.entries().len(), 13);
+    // v.txt, and 12 images with their records
+    assert_eq!(dir.entries().len(), 25);
 }
 
 /// `--save-views` replaces a views file (the one a run saved before, or one written by hand),
