@@ -88,7 +88,9 @@ pub struct ViewSettings {
 #[derive(Debug, Clone, PartialEq)]
 pub struct RenderSettings {
     pub view: ViewSettings,
-    pub output: PathBuf,
+    /// The image: a file (or pattern), `-` for standard output, or `None` when no image is
+    /// written (a many-view run that names only `.npy` outputs and no `-o`).
+    pub output: Option<PathBuf>,
     pub color_mode: ColorMode,
     pub variation: Variation,
     pub time: bool,
@@ -110,6 +112,21 @@ pub struct RenderSettings {
     pub skip_existing: bool,
     /// `--save-views FILE` (with `--orbit`).
     pub save_views: Option<PathBuf>,
+}
+
+impl RenderSettings {
+    /// The image file (or pattern) the run writes: `None` when the image goes to standard
+    /// output or no image is written.
+    pub fn image_file(&self) -> Option<&Path> {
+        self.output
+            .as_deref()
+            .filter(|_| self.stdout_format.is_none())
+    }
+
+    /// Whether the run shades an image at all (to a file or to standard output).
+    pub fn writes_image(&self) -> bool {
+        self.output.is_some()
+    }
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -207,18 +224,22 @@ fn parse_raw(raw: &[OsString]) -> Result<Command> {
             let r = cli.render;
             let view = view(r.view, &typed, r.kernel)?;
             let source = view_flags::source(r.views, r.orbit);
+            let buffers = [&r.ids, &r.depth, &r.zdepth, &r.normals];
             let output = match r.output {
-                Some(o) => o,
-                None if source.is_some() => view_flags::default_output(&view.input)?,
+                Some(o) => Some(o),
+                // many views: the outputs named, and images only when nothing else is
+                None if source.is_some() && buffers.iter().any(|b| b.is_some()) => None,
+                None if source.is_some() => Some(view_flags::default_output(&view.input)?),
                 None if view.input == Path::new(crate::scene::STDIN) => {
                     return Err(Error::usage(
                         "-i -: a scene from standard input has no file name to put the image \
                          beside; give -o IMAGE",
                     ));
                 }
-                None => default_output(&view.input, raw)?,
+                // one view: the image always, beside the input by default
+                None => Some(default_output(&view.input, raw)?),
             };
-            let stdout_format = stdout_format(&output, r.format.as_deref())?;
+            let stdout_format = stdout_format(output.as_deref(), r.format.as_deref())?;
             let settings = RenderSettings {
                 view,
                 output,
@@ -267,10 +288,19 @@ fn default_output(input: &Path, raw: &[OsString]) -> Result<PathBuf> {
 
 /// The format of an image written to standard output (`-o -`, with `--format`, PNG by default),
 /// or `None` for an image file, whose extension decides (a `--format` that disagrees is refused).
-fn stdout_format(output: &Path, format: Option<&str>) -> Result<Option<ImageFormat>> {
+fn stdout_format(output: Option<&Path>, format: Option<&str>) -> Result<Option<ImageFormat>> {
     let named = |f: &str| match f {
         "bmp" => ImageFormat::Bmp,
         _ => ImageFormat::Png,
+    };
+    let Some(output) = output else {
+        return match format {
+            Some(f) => Err(Error::usage(format!(
+                "--format {f}: chooses the format of -o - (standard output); this run writes \
+                 no image (give -o - or -o PATTERN.{f})"
+            ))),
+            None => Ok(None),
+        };
     };
     if output == Path::new("-") {
         return Ok(Some(format.map_or(ImageFormat::Png, named)));

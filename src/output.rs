@@ -213,7 +213,7 @@ pub(crate) fn install_interrupt_cleanup() {
             for tmp in list.iter() {
                 let _ = fs::remove_file(tmp);
             }
-            eprintln!("lanecast: interrupted");
+            let _ = writeln!(io::stderr().lock(), "lanecast: interrupted");
             std::process::exit(INTERRUPTED_EXIT);
         });
     });

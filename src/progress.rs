@@ -24,13 +24,15 @@ pub fn with_progress<T>(total: usize, work: impl FnOnce(&AtomicUsize) -> T) -> T
                 std::thread::sleep(Duration::from_millis(100));
                 if start.elapsed() >= DELAY && !finished.load(Ordering::Relaxed) {
                     let pct = done.load(Ordering::Relaxed) * 100 / total.max(1);
-                    eprint!("\rlanecast: rendering {pct:>3}%");
-                    let _ = std::io::stderr().flush();
+                    // the line is only a courtesy: a stderr that fails is left alone
+                    let mut err = std::io::stderr().lock();
+                    let _ = write!(err, "\rlanecast: rendering {pct:>3}%");
+                    let _ = err.flush();
                     drawn = true;
                 }
             }
             if drawn {
-                eprint!("\r{:30}\r", "");
+                let _ = write!(std::io::stderr().lock(), "\r{:30}\r", "");
             }
         });
         let out = work(&done);

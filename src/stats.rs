@@ -27,7 +27,8 @@ pub struct Stats {
     /// Seed of the `random` colours.
     pub seed: u64,
     /// Every output file of the run: (what, path as given), `what` one of `image`, `ids`,
-    /// `depth`, `stats`.
+    /// `depth`, `zdepth`, `normals`, `stats`; a many-view run's numbered outputs as their
+    /// patterns (`frames/view_%05d.png`; each view's own names are in `poses`).
     pub outputs: Vec<(&'static str, String)>,
     /// Phases in order: parse, setup, render (best of the repeats), shade, write.
     pub phases: Vec<(&'static str, f64)>,
@@ -224,7 +225,7 @@ impl Stats {
             let _ = writeln!(
                 out,
                 "  no view rendered: all {} skipped (--skip-existing found their outputs \
-                 complete)",
+                 complete, made by these settings)",
                 v.skipped
             );
         } else if let Some(v) = &self.views {

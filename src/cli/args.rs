@@ -13,10 +13,10 @@ Examples:
   lanecast -i scenes/bunny.sc -cm shade --zdepth z.npy --normals n.npy
   lanecast compare -i scene1.sc -size 1920x1080 -o diff.png
 
-Exit codes: 0 success, 2 bad usage or bad input (message names the file and line, or the
-argument), 75 an output folder another run kept locked longer than LANECAST_LOCK_WAIT seconds
-(default 30; nothing written), 130 interrupted, 1 anything else (I/O errors, a failed
-comparison).";
+Exit codes: 0 success (also when the reader of stdout or stderr closes the pipe), 2 bad usage
+or bad input (message names the file and line, or the argument), 75 an output folder another
+run kept locked longer than LANECAST_LOCK_WAIT seconds (default 30; nothing written), 130
+interrupted, 1 anything else (I/O errors, stdout or stderr full, a failed comparison).";
 
 #[derive(Parser, Debug)]
 #[command(
@@ -172,12 +172,14 @@ pub(super) struct RenderArgs {
     /// point, at its distance and height. Outputs as with --views.
     #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = orbit_views)]
     pub(super) orbit: Option<u32>,
-    /// With --orbit: write the views file of the orbit's cameras to FILE (numbers in full, so
-    /// --views FILE renders the same views bit for bit).
-    #[arg(long, value_name = "FILE")]
+    /// With --orbit: write the views file of the orbit's cameras to FILE.txt (numbers in full,
+    /// so --views FILE.txt renders the same views bit for bit); an existing file is replaced
+    /// only when it is a views file.
+    #[arg(long, value_name = "FILE.txt")]
     pub(super) save_views: Option<PathBuf>,
-    /// With --views or --orbit: leave out every view whose outputs all exist (a rerun picks up
-    /// where an interrupted run stopped).
+    /// With --views or --orbit: leave out every view whose files are whole and were made by
+    /// this scene, camera, size, precision and output settings, as the record written beside
+    /// them says (a rerun picks up where an interrupted run stopped).
     #[arg(long)]
     pub(super) skip_existing: bool,
 }

@@ -19,13 +19,13 @@ fn render(s: &str) -> RenderSettings {
 #[test]
 fn original_invocations_parse() {
     let r = render("-i scene1.sc");
-    assert_eq!(r.output, PathBuf::from("scene1.png"));
+    assert_eq!(r.output, Some(PathBuf::from("scene1.png")));
     assert_eq!((r.view.width, r.view.height), (640, 480));
     assert_eq!(r.color_mode, ColorMode::Random);
     assert_eq!(r.variation, Variation::Linear);
     assert_eq!(
         render("-i scene1.sc -o out.bmp").output,
-        PathBuf::from("out.bmp")
+        Some(PathBuf::from("out.bmp"))
     );
     let r = render("-i scene1.sc -size 800x600");
     assert_eq!((r.view.width, r.view.height), (800, 600));
@@ -303,6 +303,31 @@ fn misreadings_are_named_as_typed_with_what_was_meant() {
         render("-i s.sc --eye -1,2,3").view.camera.eye.unwrap().x,
         -1.0
     );
-    assert_eq!(render("-i s.sc -o -").output, PathBuf::from("-"));
+    assert_eq!(render("-i s.sc -o -").output, Some(PathBuf::from("-")));
     assert_eq!(render("-is.sc").view.input, PathBuf::from("s.sc"));
+}
+
+/// A many-view run writes the outputs it names: no image when only buffers are named (and no
+/// `-o`), images by default when nothing is; one view keeps its image beside the input.
+#[test]
+fn many_views_naming_only_buffers_write_no_image() {
+    let r = render("-i s.sc --orbit 3 --ids i%d.npy");
+    assert_eq!((r.output.as_deref(), r.image_file()), (None, None));
+    assert!(!r.writes_image());
+    let r = render("-i s.sc --views v.txt --normals n%d.npy --depth d%d.npy");
+    assert_eq!(r.output, None);
+    let r = render("-i s.sc --orbit 3");
+    assert_eq!(r.image_file(), Some(Path::new("s_%05d.png")));
+    let r = render("-i s.sc --orbit 3 --ids i%d.npy -o f%d.png");
+    assert_eq!(r.image_file(), Some(Path::new("f%d.png")));
+    let r = render("-i s.sc --orbit 3 --ids i%d.npy -o -");
+    assert_eq!((r.image_file(), r.writes_image()), (None, true));
+    // one view: the image beside the input, whatever else is named
+    let r = render("-i s.sc --ids i.npy");
+    assert_eq!(r.image_file(), Some(Path::new("s.png")));
+    let m = usage_message("-i s.sc --orbit 3 --ids i%d.npy --format bmp");
+    assert!(
+        m.contains("--format bmp") && m.contains("writes no image"),
+        "{m}"
+    );
 }

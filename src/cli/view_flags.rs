@@ -103,8 +103,8 @@ pub fn check(s: &RenderSettings, typed: &Typed) -> Result<()> {
              --zdepth, --normals)",
         ));
     }
-    if s.stdout_format.is_none() {
-        Pattern::parse("-o", &s.output)?;
+    if let Some(p) = s.image_file() {
+        Pattern::parse("-o", p)?;
     }
     for (name, path) in files {
         if let Some(p) = path {

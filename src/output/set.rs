@@ -55,8 +55,10 @@ pub enum OutputKind {
     Npy,
     /// A JSON record: `.json`.
     Json,
-    /// Text under any name (`--save-views`).
-    Text,
+    /// A views file, text: `.txt` (`--save-views`).
+    Views,
+    /// The record of a view of a many-view run (`run/record.rs`): `.lanecast-view`.
+    Record,
 }
 
 impl OutputKind {
@@ -71,7 +73,8 @@ impl OutputKind {
             OutputKind::Image => matches!(ext.as_deref(), Some("png" | "bmp")),
             OutputKind::Npy => ext.as_deref() == Some("npy"),
             OutputKind::Json => ext.as_deref() == Some("json"),
-            OutputKind::Text => true,
+            OutputKind::Views => ext.as_deref() == Some("txt"),
+            OutputKind::Record => ext.as_deref() == Some("lanecast-view"),
         };
         if ok {
             return Ok(());
@@ -80,7 +83,8 @@ impl OutputKind {
             OutputKind::Image => "unsupported image format; the name must end in .png or .bmp",
             OutputKind::Npy => "written as NumPy data; the name must end in .npy",
             OutputKind::Json => "written as JSON; the name must end in .json",
-            OutputKind::Text => unreachable!("text takes any name"),
+            OutputKind::Views => "written as a views file (text); the name must end in .txt",
+            OutputKind::Record => "a view's record; the name must end in .lanecast-view",
         };
         Err(Error::usage(format!("{flag} {}: {what}", path.display())))
     }
@@ -119,6 +123,8 @@ fn action(flag: &str) -> &'static str {
         "--zdepth" => "write the --zdepth file",
         "--normals" => "write the --normals file",
         "--stats" => "write the --stats file",
+        "--save-views" => "write the --save-views file",
+        "--skip-existing record" => "write the view's record (what --skip-existing reads)",
         _ => "write output",
     }
 }
@@ -291,6 +297,17 @@ impl OutputSet {
         let fail = |e| Error::io(&o.path, action(o.flag), e);
         // a clone shares the lock, which stays with `hold` when the clone is closed
         fill_file(o.hold.try_clone().map_err(fail)?, fill).map_err(fail)
+    }
+
+    /// The temporary file of the output of `flag`, once written: what [`OutputSet::commit`]
+    /// renames onto its target.
+    pub fn written(&self, flag: &str) -> Result<PathBuf> {
+        match self.outs.iter().find(|o| o.flag == flag && o.written) {
+            Some(o) => Ok(o.tmp.clone()),
+            None => Err(Error::Failed(format!(
+                "internal error: no output {flag} written in the set"
+            ))),
+        }
     }
 
     /// The path of the output of `flag`.

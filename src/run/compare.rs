@@ -2,6 +2,7 @@
 //! past the tolerance. The comparison itself is the library's (`crate::compare`).
 
 use super::load_view;
+use super::say::{self, Stream};
 use crate::cli::CompareSettings;
 use crate::compare::{compare_precision, diff_picture};
 use crate::error::{Error, Result};
@@ -25,13 +26,17 @@ pub(crate) fn compare_command(s: &CompareSettings) -> Result<()> {
     let precision = s.view.precision;
     let (report, oracle) = compare_precision(&scene, &camera, precision, s.view.accel);
     let r = &report;
-    println!("scene       {}", s.view.input.display());
-    println!("precision   {}", precision.name());
-    println!("against     the f64 scalar oracle");
+    let mut text = format!(
+        "scene       {}\nprecision   {}\nagainst     the f64 scalar oracle\n",
+        s.view.input.display(),
+        precision.name()
+    );
     let (width, height, allowed) = (camera.width, camera.height, Some(s.max_mismatch_ppm));
     for line in r.lines(width, height, allowed, precision == Precision::Auto) {
-        println!("{line}");
+        text += &line;
+        text.push('\n');
     }
+    // the diff image first: a standard output that fails or closes loses only the report
     if s.output.is_some() {
         set.write_image(
             "--output",
@@ -41,7 +46,10 @@ pub(crate) fn compare_command(s: &CompareSettings) -> Result<()> {
         )?;
     }
     set.commit()?;
+    // a reader that closes the pipe (`| head -1`) wants no more: not an error
+    let printed = say::write(Stream::Stdout, "write the comparison report", &text);
     if r.unexcused_ppm() > s.max_mismatch_ppm {
+        // the verdict outranks a report that could not be written
         return Err(Error::Failed(format!(
             "{} ({:.1} ppm) exceed --max-mismatch-ppm {}",
             count(
@@ -53,5 +61,5 @@ pub(crate) fn compare_command(s: &CompareSettings) -> Result<()> {
             s.max_mismatch_ppm
         )));
     }
-    Ok(())
+    printed.map(|_| ())
 }

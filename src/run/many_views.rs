@@ -8,6 +8,7 @@
 //! range rule (`scene::range::f32_range`, relative to that eye). A bad view stops the run
 //! with nothing written.
 
+use super::record;
 use super::render::{
     check_memory, encode_to_stdout, run_stats, shade_frame, stats_key, write_frame,
 };
@@ -24,15 +25,18 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::Ordering;
 use std::time::Instant;
 
-/// One numbered output: its flag, pattern and kind.
+/// One numbered output: its flag, pattern (and its text as given) and kind.
 struct Numbered {
     flag: &'static str,
     pattern: Pattern,
+    /// The pattern as typed (`frames/view_%05d.png`): what `--stats` records as the run's
+    /// output.
+    typed: PathBuf,
     kind: OutputKind,
 }
 
-/// The numbered outputs of `s`: the image (unless it goes to standard output), ids, depth,
-/// z-depth, normals.
+/// The numbered outputs of `s`: the image (unless it goes to standard output or none is
+/// asked for), ids, depth, z-depth, normals.
 fn numbered(s: &RenderSettings) -> Result<Vec<Numbered>> {
     let mut outs = Vec::new();
     let mut add = |flag, path: &Path, kind| -> Result<()> {
@@ -40,12 +44,13 @@ fn numbered(s: &RenderSettings) -> Result<Vec<Numbered>> {
         outs.push(Numbered {
             flag,
             pattern,
+            typed: path.to_path_buf(),
             kind,
         });
         Ok(())
     };
-    if s.stdout_format.is_none() {
-        add("--output", &s.output, OutputKind::Image)?;
+    if let Some(p) = s.image_file() {
+        add("--output", p, OutputKind::Image)?;
     }
     if let Some(p) = &s.ids {
         add("--ids", p, OutputKind::Npy)?;
@@ -83,6 +88,14 @@ fn names(
                 &path,
                 reads.iter().map(|(w, p)| (w.as_str(), p.as_path())),
             )?;
+            if paths.is_empty() {
+                // the view's record, beside its first output
+                output::check_not_read(
+                    o.flag,
+                    &record::path_for(&path),
+                    reads.iter().map(|(w, p)| (w.as_str(), p.as_path())),
+                )?;
+            }
             if let Some((other, flag)) = seen.insert(output::identity(&path), (v, o.flag)) {
                 return Err(Error::usage(format!(
                     "{} {}: view {v} and view {other} ({flag}) would both write {}; the \
@@ -151,13 +164,17 @@ fn cameras(
     }
 }
 
-/// The `--save-views` file's name checked against every file the run reads and writes.
+/// The `--save-views` file's name checked: its extension (`.txt`), against every file the run
+/// reads and writes, and, when it exists, its content: only a views file (one that
+/// `load_views` reads without error) is replaced, so a mesh, an image or notes are never
+/// written over.
 fn check_save_views(
     p: &Path,
     reads: &[(&str, &Path)],
     names: &[Vec<PathBuf>],
     stats: Option<&Path>,
 ) -> Result<()> {
+    OutputKind::Views.check_extension("--save-views", p)?;
     output::check_not_read("--save-views", p, reads.iter().copied())?;
     let id = output::identity(p);
     let clash = (names.iter().flatten().map(PathBuf::as_path))
@@ -170,7 +187,25 @@ fn check_save_views(
             clash.display()
         )));
     }
-    Ok(())
+    match std::fs::metadata(p) {
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
+        Err(e) => Err(Error::io(
+            p,
+            "read the --save-views file it would replace",
+            e,
+        )),
+        // a folder or another non-file: `OutputSet::create` refuses it
+        Ok(m) if !m.is_file() => Ok(()),
+        Ok(_) => match load_views(p) {
+            Ok(_) => Ok(()),
+            Err(e @ Error::Io { .. }) => Err(e),
+            Err(e) => Err(Error::usage(format!(
+                "--save-views {}: exists and is not a views file ({e}); refusing to replace \
+                 it: remove it, or name another file",
+                p.display()
+            ))),
+        },
+    }
 }
 
 /// Runs the render command over many views.
@@ -218,7 +253,7 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
         check_save_views(p, &stats_reads, &names, s.stats.as_deref())?;
     }
     for w in &scene.warnings {
-        eprintln!("lanecast: warning: {w}");
+        super::say::warn(w)?;
     }
     let mut scene = scene;
     super::frame_mesh_alone(&mut scene, &s.view, matches!(source, ViewSource::Orbit(_)));
@@ -242,7 +277,7 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
     let checked = secs(clock.elapsed());
     let outputs = outs
         .iter()
-        .map(|o| (stats_key(o.flag), o.pattern.name(0).display().to_string()))
+        .map(|o| (stats_key(o.flag), o.typed.display().to_string()))
         .chain(s.stats.iter().map(|p| ("stats", p.display().to_string())));
     let mut stats = Stats {
         primitives: scene.counts(),
@@ -257,7 +292,7 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
             s.view.width, s.view.height
         );
         let text = crate::scene::cameras::write_views(&specs, &header);
-        let mut set = OutputSet::create(&[("--save-views", p, OutputKind::Text)], &stats_reads)?;
+        let mut set = OutputSet::create(&[("--save-views", p, OutputKind::Views)], &stats_reads)?;
         set.write_bytes("--save-views", text.as_bytes())?;
         set.commit()?;
     }
@@ -278,21 +313,33 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
     let loop_start = Instant::now();
     let mut times = ViewTimes::default();
     let flags: Vec<(&'static str, OutputKind)> = outs.iter().map(|o| (o.flag, o.kind)).collect();
+    // what every view's record holds but its camera and files
+    let run_lines = record::run_lines(s, &scene, s.image_file().is_some());
     // the progress line (a terminal only, past a second) counts views
     progress::with_progress(cameras.len(), |done| -> Result<()> {
-        for (k, (_, camera)) in cameras.iter().enumerate() {
+        for (k, (spec, camera)) in cameras.iter().enumerate() {
             let paths = &names[k];
-            if s.skip_existing && !paths.is_empty() && complete(&flags, paths, s) {
+            let files: Vec<(&'static str, &Path)> = (flags.iter().zip(paths))
+                .map(|(&(flag, _), p)| (flag, p.as_path()))
+                .collect();
+            // beside the first file (none with -o - alone, which --skip-existing refuses)
+            let record = paths.first().map(|p| record::path_for(p));
+            if s.skip_existing
+                && let Some(r) = &record
+                && complete(&flags, paths, s)
+                && record::matches(r, &run_lines, spec, &files)
+            {
                 stats.poses[k].skipped = true;
                 times.skipped += 1;
                 done.fetch_add(1, Ordering::Relaxed);
                 continue;
             }
-            let outputs: Vec<(&'static str, &Path, OutputKind)> = flags
+            let mut outputs: Vec<(&'static str, &Path, OutputKind)> = flags
                 .iter()
                 .zip(paths)
                 .map(|(&(flag, kind), p)| (flag, p.as_path(), kind))
                 .collect();
+            outputs.extend(record.as_deref().map(record::output));
             let mut set = OutputSet::create(&outputs, &[])?;
             let view = views.render_marking(camera)?;
             let mut time = ViewTime {
@@ -310,8 +357,15 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
             stats.threads = crate::par::current_num_threads();
             stats.renders.push(time.render_s);
             let clock = Instant::now();
-            let rgb = shade_frame(s, &frame, &scene, camera);
+            // no image asked for (buffers only): nothing to shade
+            let rgb = match s.writes_image() {
+                true => shade_frame(s, &frame, &scene, camera),
+                false => Vec::new(),
+            };
             write_frame(&mut set, s, (&frame, &scene, camera), &rgb)?;
+            if record.is_some() {
+                record::write(&mut set, &run_lines, spec, &files)?;
+            }
             set.commit()?;
             views.recycle(frame);
             let sent = match s.stdout_format {
@@ -336,14 +390,19 @@ pub(crate) fn views_command(s: &RenderSettings, source: &ViewSource) -> Result<(
         set.commit()?;
     }
     if s.time {
-        eprint!("{}", stats.text());
+        super::say::write(
+            super::say::Stream::Stderr,
+            "write the -time report",
+            &stats.text(),
+        )?;
     }
     Ok(())
 }
 
 /// Whether every output of a view (`paths`, one for each of `flags`) is already a whole file
 /// of this run's size: a view with a missing, empty, truncated or other-sized output is
-/// rendered again by `--skip-existing`.
+/// rendered again by `--skip-existing` (and one whose files are whole, but whose record does
+/// not say this run made them: `record::matches`).
 fn complete(flags: &[(&'static str, OutputKind)], paths: &[PathBuf], s: &RenderSettings) -> bool {
     flags.iter().zip(paths).all(|(&(flag, kind), path)| {
         let what = match (kind, flag) {

@@ -4,7 +4,9 @@
 
 mod compare;
 mod many_views;
+mod record;
 mod render;
+mod say;
 
 use crate::camera::Camera;
 use crate::cli::{Command, ViewSettings};
@@ -17,7 +19,8 @@ use std::path::PathBuf;
 pub(crate) fn command(cmd: Command) -> Result<()> {
     match cmd {
         Command::Info(text) => {
-            print!("{text}");
+            // `lanecast --help | head -1`: a closed pipe is a quiet end
+            say::write(say::Stream::Stdout, "write the help", &text)?;
             Ok(())
         }
         // Every phase (parse, setup, render, shade) runs on the pool `--threads` asks for.
@@ -40,7 +43,7 @@ fn load_view(v: &ViewSettings, set: &OutputSet) -> Result<(Scene, Camera)> {
         .collect();
     set.check_reads(&reads)?;
     for w in &scene.warnings {
-        eprintln!("lanecast: warning: {w}");
+        say::warn(w)?;
     }
     let mut scene = scene;
     frame_mesh_alone(&mut scene, v, false);

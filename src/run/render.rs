@@ -17,9 +17,7 @@ use std::time::Instant;
 /// The outputs the render command writes: (flag, path, kind), the image first.
 fn outputs(s: &RenderSettings) -> Vec<(&'static str, &Path, OutputKind)> {
     let mut outs = Vec::new();
-    if s.stdout_format.is_none() {
-        outs.push(("--output", s.output.as_path(), OutputKind::Image));
-    }
+    outs.extend(s.image_file().map(|p| ("--output", p, OutputKind::Image)));
     outs.extend(s.ids.as_deref().map(|p| ("--ids", p, OutputKind::Npy)));
     outs.extend(s.depth.as_deref().map(|p| ("--depth", p, OutputKind::Npy)));
     outs.extend(
@@ -100,7 +98,7 @@ pub(super) fn write_frame(
     rgb: &[u8],
 ) -> Result<()> {
     let (w, h) = (s.view.width as usize, s.view.height as usize);
-    if s.stdout_format.is_none() {
+    if s.image_file().is_some() {
         set.write_image("--output", s.view.width, s.view.height, rgb)?;
     }
     if s.ids.is_some() {
@@ -226,7 +224,11 @@ pub(crate) fn render_command(s: &RenderSettings) -> Result<()> {
         encode_to_stdout(format, s.view.width, s.view.height, &rgb)?;
     }
     if s.time {
-        eprint!("{}", stats.text());
+        super::say::write(
+            super::say::Stream::Stderr,
+            "write the -time report",
+            &stats.text(),
+        )?;
     }
     Ok(())
 }

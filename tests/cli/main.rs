@@ -55,4 +55,5 @@ mod rejected;
 mod stale;
 mod stats;
 mod stdin;
+mod streams;
 mod surface_outputs;

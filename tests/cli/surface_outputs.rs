@@ -276,7 +276,19 @@ fn bad_normals_and_zdepth_names_are_refused_with_nothing_written() {
             "z%d.npy",
         ],
     );
-    assert_eq!(dir.entries(), ["b.sc", "n.npy", "sub", "z0.npy", "z1.npy"]);
+    // each view's file with its record, which --skip-existing reads
+    assert_eq!(
+        dir.entries(),
+        [
+            ".z0.npy.lanecast-view",
+            ".z1.npy.lanecast-view",
+            "b.sc",
+            "n.npy",
+            "sub",
+            "z0.npy",
+            "z1.npy"
+        ]
+    );
 }
 
 /// Many views number the new outputs with the others; `--skip-existing` renders again exactly
@@ -339,8 +351,11 @@ fn numbered_normals_and_zdepth_resume_with_skip_existing() {
     assert_eq!(stats["views_summary"]["skipped"], 2);
     assert_eq!(stats["views"][1]["outputs"]["normals"], "n1.npy");
     assert_eq!(stats["views"][3]["outputs"]["zdepth"], "z03.npy");
-    assert_eq!(stats["outputs"]["normals"], "n0.npy");
-    assert_eq!(stats["outputs"]["zdepth"], "z00.npy");
+    // the run's outputs are the patterns; each view's, its own names
+    assert_eq!(stats["outputs"]["normals"], "n%d.npy");
+    assert_eq!(stats["outputs"]["zdepth"], "z%02d.npy");
+    assert_eq!(stats["outputs"]["image"], "f%d.png");
+    assert_eq!(stats["outputs"]["stats"], "s.json");
     for (k, files) in before.iter().enumerate() {
         for (name, bytes) in names(k).iter().zip(files) {
             assert!(fs::read(dir.join(name)).unwrap() == *bytes, "{name}");

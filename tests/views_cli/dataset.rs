@@ -1,4 +1,5 @@
-//! README's dataset example ("Many views"), run as written (the scene's path absolute): an
+//! README's dataset example ("Many views"), run as written (the scene's path absolute, the
+//! scratch folder `$d` a temporary one): an
 //! orbit's ids, depths, z-depths and normals, its views file (`--save-views`) and poses
 //! (`--stats`); then the views file renders the same ids again.
 
@@ -17,7 +18,7 @@ fn readme_commands(root: &Path) -> [String; 2] {
     let save = format!("{} {}", lines[at].trim_end_matches('\\'), lines[at + 1]);
     let again = lines
         .iter()
-        .find(|l| l.starts_with("lanecast ") && l.contains("--views rig.txt"))
+        .find(|l| l.starts_with("lanecast ") && l.contains("--views $d/rig.txt"))
         .expect("README's Many views renders the views file again");
     let again = again.split(" # ").next().unwrap().to_string();
     [save, again]
@@ -31,14 +32,35 @@ fn readme_dataset_example_saves_its_poses_and_renders_again_bit_for_bit() {
         fs::create_dir_all(dir.path.join(sub)).unwrap();
     }
     let commands = readme_commands(root);
+    let scenes = || {
+        let mut names: Vec<_> = (fs::read_dir(root.join("scenes")).unwrap())
+            .map(|e| e.unwrap().file_name())
+            .collect();
+        names.sort();
+        names
+    };
+    let before = scenes();
     for command in &commands {
-        let args: Vec<String> = command
-            .split_whitespace()
-            .skip(1)
-            .map(|a| match a.strip_prefix("scenes/") {
-                Some(rest) => root.join("scenes").join(rest).display().to_string(),
-                None => a.to_string(),
-            })
+        let words: Vec<&str> = command.split_whitespace().collect();
+        for pair in words.windows(2) {
+            // every file the commands write (or read back) is in the scratch folder `$d`
+            if pair[0].starts_with('-') && !["-i", "--orbit"].contains(&pair[0]) {
+                assert!(
+                    pair[1].starts_with("$d/"),
+                    "{command}: {} {}",
+                    pair[0],
+                    pair[1]
+                );
+            }
+        }
+        let args: Vec<String> = (words.iter().skip(1))
+            .map(
+                |a| match (a.strip_prefix("scenes/"), a.strip_prefix("$d/")) {
+                    (Some(rest), _) => root.join("scenes").join(rest).display().to_string(),
+                    (_, Some(rest)) => rest.to_string(),
+                    _ => a.to_string(),
+                },
+            )
             .collect();
         let o = Command::new(env!("CARGO_BIN_EXE_lanecast"))
             .args(&args)
@@ -47,6 +69,21 @@ fn readme_dataset_example_saves_its_poses_and_renders_again_bit_for_bit() {
             .unwrap();
         assert_success(&o, command);
     }
+    // the views file's run names only ids: it writes no image (beside the scene or anywhere)
+    assert_eq!(scenes(), before, "files written into scenes/");
+    let pngs = |d: &Path| {
+        (fs::read_dir(d).unwrap())
+            .filter(|e| {
+                e.as_ref()
+                    .unwrap()
+                    .path()
+                    .extension()
+                    .is_some_and(|x| x == "png")
+            })
+            .count()
+    };
+    assert_eq!(pngs(&dir.path.join("frames")), 24);
+    assert_eq!(pngs(&dir.path), 0);
     let views = fs::read_to_string(dir.path.join("rig.txt")).unwrap();
     let n = views.lines().filter(|l| l.starts_with("camera ")).count();
     assert_eq!(n, 24, "{views}");

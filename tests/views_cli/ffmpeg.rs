@@ -33,7 +33,12 @@ fn readme_ffmpeg_example_makes_yuv420p_h264() {
         .split_whitespace()
         .last()
         .expect("ffmpeg's output file");
-    assert!(output.ends_with(".mp4"), "{command}");
+    // into README's scratch folder `$d`, here the test's own
+    assert!(
+        output.starts_with("$d/") && output.ends_with(".mp4"),
+        "{command}"
+    );
+    let output = &output["$d/".len()..];
     let replaced = command
         .replacen(
             "lanecast ",
@@ -48,7 +53,7 @@ fn readme_ffmpeg_example_makes_yuv420p_h264() {
     );
     let dir = TempDir::new("views-ffmpeg");
     let o = Command::new("bash")
-        .args(["-c", &format!("set -o pipefail; {replaced}")])
+        .args(["-c", &format!("set -o pipefail; d=.; {replaced}")])
         .current_dir(&dir.path)
         .output()
         .unwrap();

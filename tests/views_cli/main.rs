@@ -332,7 +332,13 @@ fn standard_output_carries_one_image_per_view() {
     );
     assert_success(&o, "-o - bmp");
     assert_eq!(o.stdout.len(), 3 * (54 + 64 * 48 * 3));
-    assert_eq!(dir.entries(), ["i0.npy", "i1.npy", "i2.npy"]);
+    // the files, each view's with its record (`--skip-existing` reads it)
+    let files = ["i0.npy", "i1.npy", "i2.npy"];
+    let records = files.map(|f| format!(".{f}.lanecast-view"));
+    assert_eq!(
+        dir.entries(),
+        [&records[..], &files.map(String::from)[..]].concat()
+    );
 }
 
 /// The share of pixels re-decided in f64 is counted against every rendered view's pixels:

@@ -146,11 +146,11 @@ fn bad_views_and_patterns_are_refused_before_anything_is_written() {
         // --save-views: never over a file the run reads or writes, only with --orbit
         (
             &["--orbit", "3", "-o", "f%d.png", "--save-views", scene],
-            "is the input scene; refusing to overwrite it",
+            "the name must end in .txt",
         ),
         (
             &["--orbit", "3", "-o", "f%d.png", "--save-views", "f2.png"],
-            "--save-views f2.png: the run also writes f2.png",
+            "--save-views f2.png: written as a views file (text); the name must end in .txt",
         ),
         (
             &[
@@ -163,7 +163,7 @@ fn bad_views_and_patterns_are_refused_before_anything_is_written() {
                 "--save-views",
                 "s.json",
             ],
-            "--save-views s.json: the run also writes s.json",
+            "--save-views s.json: written as a views file (text); the name must end in .txt",
         ),
         (
             &[
@@ -179,6 +179,20 @@ fn bad_views_and_patterns_are_refused_before_anything_is_written() {
         (
             &["-o", "f.png", "--save-views", "v.txt"],
             "--save-views v.txt: writes the cameras of --orbit N",
+        ),
+        // a views file is text named .txt, as every other output's kind has its extensions;
+        // an existing file is replaced only when it is a views file
+        (
+            &["--orbit", "3", "-o", "f%d.png", "--save-views", "mesh.obj"],
+            "--save-views mesh.obj: written as a views file (text); the name must end in .txt",
+        ),
+        (
+            &["--orbit", "3", "-o", "f%d.png", "--save-views", "views.png"],
+            "--save-views views.png: written as a views file (text); the name must end in .txt",
+        ),
+        (
+            &["--orbit", "3", "-o", "f%d.png", "--save-views", "shape.txt"],
+            "--save-views shape.txt: exists and is not a views file (shape.txt:1:1:",
         ),
     ];
     let before = dir.entries();
@@ -243,5 +257,91 @@ fn a_view_out_of_range_is_refused_before_anything_renders() {
         &["-i", scene, "--orbit", "12", "-o", "o%02d.png"],
     );
     assert_success(&o, "scene 6 orbit");
-    assert_eq!(dir.entries().len(), 13);
+    // v.txt, and 12 images with their records
+    assert_eq!(dir.entries().len(), 25);
+}
+
+/// `--save-views` replaces a views file (the one a run saved before, or one written by hand),
+/// and nothing else: a mesh the scene does not read, an image, notes, an empty file keep their
+/// bytes and the run writes nothing (exit 2).
+#[test]
+fn save_views_replaces_only_a_views_file() {
+    let dir = TempDir::new("views-save-over");
+    let scene = seed_scene(1);
+    let scene = scene.to_str().unwrap();
+    let save = |name: &str| {
+        run(
+            &dir.path,
+            &[
+                "-i",
+                scene,
+                "-size",
+                "32x24",
+                "--orbit",
+                "3",
+                "--ids",
+                "i%d.npy",
+                "--save-views",
+                name,
+            ],
+        )
+    };
+    dir.write(
+        "old.txt",
+        "# by hand\ncamera eye 0 2 9 look 0 0 0 up 0 1 0\n",
+    );
+    assert_success(&save("old.txt"), "over a views file");
+    let saved = fs::read_to_string(dir.join("old.txt")).unwrap();
+    assert_eq!(
+        saved.lines().filter(|l| l.starts_with("camera ")).count(),
+        3
+    );
+    assert_success(&save("old.txt"), "over the views file it saved");
+    assert_eq!(fs::read_to_string(dir.join("old.txt")).unwrap(), saved);
+    let others: [(&str, &[u8]); 5] = [
+        ("bunny.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"),
+        ("views.png", b"\x89PNG\r\n\x1a\n"),
+        ("notes.txt", b"things to render tomorrow\n"),
+        ("empty.txt", b""),
+        (
+            "latin1.txt",
+            b"camera eye 0 2 9 look 0 0 0 up 0 1 0 # caf\xe9\n",
+        ),
+    ];
+    for (name, bytes) in others {
+        fs::write(dir.join(name), bytes).unwrap();
+    }
+    // nor a file the run reads, even when it is a views file too
+    dir.write("both.txt", &fs::read_to_string(scene).unwrap());
+    let o = run(
+        &dir.path,
+        &[
+            "-i",
+            "both.txt",
+            "--orbit",
+            "2",
+            "--ids",
+            "i%d.npy",
+            "--save-views",
+            "both.txt",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("is the input scene; refusing to overwrite it"),
+        "{}",
+        stderr(&o)
+    );
+    let before = dir.entries();
+    for (name, bytes) in others {
+        let o = save(name);
+        assert_eq!(o.status.code(), Some(2), "{name}: {}", stderr(&o));
+        assert!(
+            stderr(&o).contains(&format!("--save-views {name}:")),
+            "{}",
+            stderr(&o)
+        );
+        assert!(fs::read(dir.join(name)).unwrap() == bytes, "{name} changed");
+        assert_eq!(dir.entries(), before, "{name}: the run wrote something");
+    }
 }
