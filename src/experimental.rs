@@ -13,9 +13,9 @@ pub mod accel {
     pub use crate::accel::AUTO_MIN;
 }
 
-/// The pinhole camera's per-column and per-row ray tables ([`crate::Camera::tables`]).
+/// The pinhole camera's per-column and per-row ray tables ([`crate::Camera::tables`]) and the id band's width in pixels.
 pub mod camera {
-    pub use crate::camera::RayTables;
+    pub use crate::camera::{ID_BAND_PIXELS, RayTables};
 }
 
 /// Intersection kernels: one primitive family at a time ([`Family`](kernel::Family)), 1-lane

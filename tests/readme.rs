@@ -196,16 +196,16 @@ fn readme_test_commands_are_what_ci_runs() {
     }
 }
 
-/// Both boundary bands README quotes come from their source: `compare`'s edge band is
-/// `compare::EDGE_BAND` (32u, for every method), and `--precision auto`'s is the bound
-/// derived for it, `12u + a` (`a` = `Camera::direction_error`, at 60 degrees); README names
-/// each, and quotes no other band.
+/// Both boundary bands README quotes come from their source: `compare`'s edge band is the
+/// view's id band, `Camera::id_band` (`camera::ID_BAND_PIXELS`, an eighth of a pixel), and
+/// `--precision auto`'s f32 band is the bound derived for it, `12u + a` (`a` =
+/// `Camera::direction_error`, at 60 degrees); README names each, and quotes no other band.
 #[test]
 fn readme_boundary_bands_are_their_sources() {
     use lanecast::scene::CameraSpec;
-    use lanecast::{Camera, compare::EDGE_BAND};
+    use lanecast::{Camera, experimental::camera::ID_BAND_PIXELS};
     let u = f32::EPSILON as f64 / 2.0;
-    assert_eq!(EDGE_BAND, 32.0 * u, "README says EDGE_BAND is 32u");
+    assert_eq!(ID_BAND_PIXELS, 0.125, "README says the id band is an eighth of a pixel");
     let spec = CameraSpec {
         eye: glam::DVec3::new(0.0, 0.0, 5.0),
         look: glam::DVec3::ZERO,
@@ -213,33 +213,34 @@ fn readme_boundary_bands_are_their_sources() {
         lens: Some(lanecast::Lens::Fov(60.0)),
     };
     let a = Camera::look_at(&spec, 640, 480).unwrap().direction_error();
-    let (edge, auto) = (format!("{EDGE_BAND:.1e}"), format!("{:.1e}", 12.0 * u + a));
+    let auto = format!("{:.1e}", 12.0 * u + a);
     let readme = readme();
     let compare = section(&readme, "Command line");
     let compare = &compare[compare.find("`lanecast compare` renders").expect("compare")..];
     assert!(
-        compare.contains(&format!(
-            "{edge} rad of a boundary: `compare::EDGE_BAND`, 32u"
-        )),
-        "README's compare paragraph gives compare::EDGE_BAND ({edge} rad) and names it"
+        compare.contains("within an eighth of a pixel of a boundary")
+            && compare.contains("`Camera::id_band`"),
+        "README's compare paragraph gives the id band and names it"
     );
     let accuracy = section(&readme, "Accuracy");
     assert!(
-        accuracy.contains(&format!(
-            "{auto} rad of a boundary (the bound derived for this kernel, `12u + a` at 60 degrees"
-        )) && accuracy.contains(&format!("inside the {edge} rad `compare` excuses")),
+        accuracy.contains("the view's id band")
+            && accuracy.contains("(an eighth of a pixel)")
+            && accuracy.contains(&format!("`12u + a` ({auto} rad at 60"))
+            && accuracy.contains("must fit in half of it"),
         "README's Accuracy gives the auto band ({auto} rad), names it, and relates it to \
-         compare's ({edge} rad)"
+         the id band"
     );
     let words: Vec<&str> = readme.split_whitespace().collect();
     for w in words.windows(2) {
         let band = w[0]
+            .trim_start_matches('(')
             .split_once("e-")
             .is_some_and(|(m, _)| m.contains('.') && m.parse::<f64>().is_ok());
         if w[1].starts_with("rad") && band {
             assert!(
-                w[0] == edge || w[0] == auto,
-                "README quotes a band of {} rad: neither {edge} (compare) nor {auto} (auto)",
+                w[0].trim_start_matches('(') == auto,
+                "README quotes a band of {} rad, not {auto} (auto's f32 band)",
                 w[0]
             );
         }

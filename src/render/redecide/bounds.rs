@@ -65,7 +65,8 @@
 //! view's id band (`Camera::id_band`, an eighth of a pixel) is *sharp* ([`SHARP`]): every hit
 //! on it is measured with the oracle's own kernel, edges and all, whatever its distance, and
 //! decided again in f64 unless the oracle hits it there too. A view whose `E` itself is not
-//! within half the id band (a field of view under about 0.7 degrees at 640 pixels) is not
+//! within half the id band (a field of view under about 0.65 degrees at 640 pixels wide, 1.9
+//! at 1920) is not
 //! drawn in f32 at all ([`f32_resolves`]): `auto` runs it in f64.
 //!
 //! `tests` below check both bounds against the kernels themselves, the f32 kernel along the
