@@ -18,6 +18,7 @@ use std::path::Path;
 fn sequential_scene(text: &str, file: &Path, max_primitives: usize) -> Result<Scene> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut camera: Option<(CameraSpec, usize)> = None;
+    let mut camera_at = None;
     let (mut shapes, mut toks) = (Shapes::new(), Vec::new());
     for (i, raw) in text.split('\n').enumerate() {
         let line = raw.strip_suffix('\r').unwrap_or(raw);
@@ -47,6 +48,7 @@ fn sequential_scene(text: &str, file: &Path, max_primitives: usize) -> Result<Sc
                     ));
                 }
                 camera = Some((parse_camera(&ctx, &toks)?, ctx.line));
+                camera_at = Some((ctx.line, ctx.col(&toks[0])));
             }
             "mesh" => {
                 if content[first.off + first.s.len()..].trim().is_empty() {
@@ -81,6 +83,7 @@ fn sequential_scene(text: &str, file: &Path, max_primitives: usize) -> Result<Sc
     Ok(Scene {
         source,
         camera,
+        camera_at,
         shapes,
         warnings,
     })

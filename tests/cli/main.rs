@@ -47,6 +47,7 @@ mod flags;
 mod help_compare;
 mod invocations;
 mod mesh;
+mod messages;
 mod methods;
 mod npy;
 mod outputs;
