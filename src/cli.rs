@@ -210,6 +210,7 @@ fn parse_raw(raw: &[OsString]) -> Result<Command> {
             let r = cli.render;
             let view = view(r.view, &typed, r.kernel, raw)?;
             let source = view_flags::source(r.views, r.orbit);
+            let typed_output = r.output.is_some();
             let output = match r.output {
                 Some(o) => o,
                 None if source.is_some() => view_flags::default_output(&view.input)?,
@@ -221,7 +222,7 @@ fn parse_raw(raw: &[OsString]) -> Result<Command> {
                 }
                 None => default_output(&view.input, raw)?,
             };
-            let stdout_format = stdout_format(&output, r.format.as_deref())?;
+            let stdout_format = stdout_format(&output, typed_output, r.format.as_deref())?;
             let settings = RenderSettings {
                 view,
                 output,
@@ -269,8 +270,9 @@ fn default_output(input: &Path, raw: &[OsString]) -> Result<PathBuf> {
 }
 
 /// The format of an image written to standard output (`-o -`, with `--format`, PNG by default),
-/// or `None` for an image file, whose extension decides (a `--format` that disagrees is refused).
-fn stdout_format(output: &Path, format: Option<&str>) -> Result<Option<ImageFormat>> {
+/// or `None` for an image file, whose extension decides (a `--format` that disagrees is refused,
+/// naming `-o` when it was `typed`, else the default name).
+fn stdout_format(output: &Path, typed: bool, format: Option<&str>) -> Result<Option<ImageFormat>> {
     let named = |f: &str| match f {
         "bmp" => ImageFormat::Bmp,
         _ => ImageFormat::Png,
@@ -281,10 +283,16 @@ fn stdout_format(output: &Path, format: Option<&str>) -> Result<Option<ImageForm
     if let Some(f) = format
         && crate::output::image_format(output).ok() != Some(named(f))
     {
+        let file = if typed {
+            format!("-o {} names a file of another format", output.display())
+        } else {
+            format!(
+                "with no -o the image goes to {}, whose extension gives another format",
+                output.display()
+            )
+        };
         return Err(Error::usage(format!(
-            "--format {f}: -o {} names a file of another format; --format chooses the format \
-             of -o - (standard output) only",
-            output.display()
+            "--format {f}: {file}; --format chooses the format of -o - (standard output) only"
         )));
     }
     Ok(None)

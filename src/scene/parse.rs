@@ -556,6 +556,7 @@ fn load_mesh(
         Error::Io { source, .. } => Error::IoAt {
             file: file.to_path_buf(),
             line,
+            col,
             path: path.to_path_buf(),
             action: "read mesh",
             source,

@@ -225,3 +225,110 @@ fn a_bad_conversion_is_named_whole() {
         "{err}"
     );
 }
+
+/// A views file that is not UTF-8 is refused at the line and column of its first bad byte; an
+/// empty one shows both line syntaxes.
+#[test]
+fn views_file_refusals_name_the_place_and_both_syntaxes() {
+    let dir = TempDir::new("msg-views");
+    dir.write("ok.sc", &format!("{FOV_CAMERA}{BALL}"));
+    fs::write(
+        dir.join("bad.txt"),
+        b"camera eye 0 0 5 look 0 0 0 up 0 1 0\n# caf\xe9\n",
+    )
+    .unwrap();
+    let (code, err) = code_and_stderr(&dir, &["-i", "ok.sc", "--views", "bad.txt", "-o", "%d.png"]);
+    assert_eq!(code, Some(2), "{err}");
+    assert!(err.contains("bad.txt:2:6: not valid UTF-8"), "{err}");
+    dir.write("empty.txt", "# nothing\n\n");
+    let (code, err) = code_and_stderr(
+        &dir,
+        &["-i", "ok.sc", "--views", "empty.txt", "-o", "%d.png"],
+    );
+    assert_eq!(code, Some(2), "{err}");
+    assert!(err.contains("`camera eye X Y Z look"), "{err}");
+    assert!(err.contains("`extrinsic M00 M01 ... M33"), "{err}");
+}
+
+/// A mesh that cannot be read, and a bad OBJ line, are named with a column.
+#[test]
+fn mesh_errors_name_a_column() {
+    let dir = TempDir::new("msg-mesh");
+    dir.write("gone.sc", &format!("{FOV_CAMERA}mesh   nowhere.obj\n"));
+    let (code, err) = code_and_stderr(&dir, &["-i", "gone.sc", "-o", "a.png"]);
+    assert_eq!(code, Some(1), "{err}");
+    assert!(err.contains("gone.sc:2:8: cannot read mesh"), "{err}");
+    dir.write("m.sc", &format!("{FOV_CAMERA}mesh m.obj\n"));
+    dir.write("m.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n");
+    let (code, err) = code_and_stderr(&dir, &["-i", "m.sc", "-o", "a.png"]);
+    assert_eq!(code, Some(2), "{err}");
+    assert!(
+        err.contains("m.obj:4:7: vertex index 7 is out of range"),
+        "{err}"
+    );
+}
+
+/// `--format` with no `-o` names the default image, not an `-o` that was not typed.
+#[test]
+fn format_without_o_names_the_default_image() {
+    let dir = TempDir::new("msg-format");
+    dir.write("ok.sc", &format!("{FOV_CAMERA}{BALL}"));
+    let (code, err) = code_and_stderr(&dir, &["-i", "ok.sc", "--format", "bmp"]);
+    assert_eq!(code, Some(2), "{err}");
+    assert!(
+        err.contains("--format bmp: with no -o the image goes to ok.png"),
+        "{err}"
+    );
+    assert!(!err.contains("-o ok.png"), "{err}");
+    let (code, err) = code_and_stderr(&dir, &["-i", "ok.sc", "--format", "bmp", "-o", "x.png"]);
+    assert_eq!(code, Some(2), "{err}");
+    assert!(err.contains("--format bmp: -o x.png names a file"), "{err}");
+}
+
+/// A folder locked too long is named by its absolute path when it is the current folder.
+#[cfg(unix)]
+#[test]
+fn the_locked_current_folder_is_named_in_full() {
+    let dir = TempDir::new("msg-lock");
+    dir.write("ok.sc", &format!("{FOV_CAMERA}{BALL}"));
+    let held = fs::File::open(&dir.path).unwrap();
+    held.lock().unwrap();
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_lanecast"))
+        .args(["-i", "ok.sc", "-o", "a.png", "-size", "8x8"])
+        .env("LANECAST_LOCK_WAIT", "0.2")
+        .current_dir(&dir.path)
+        .output()
+        .unwrap();
+    drop(held);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(75), "{err}");
+    let abs = fs::canonicalize(&dir.path).unwrap();
+    let want = format!("error: the current folder ({}): another", abs.display());
+    let also = format!(
+        "error: the current folder ({}): another",
+        dir.path.display()
+    );
+    assert!(err.contains(&want) || err.contains(&also), "{err}");
+}
+
+/// `--stats` gives a field of view's fx and fy equal (computed once, square pixels), and
+/// writes no negative zero.
+#[test]
+fn stats_fov_camera_has_equal_focal_lengths_and_no_negative_zero() {
+    let dir = TempDir::new("msg-stats");
+    // fov 45 at 640x480: W / (2 half_w) and H / (2 half_h) differ by 1 ulp
+    dir.write(
+        "ok.sc",
+        &format!("camera eye 0 0 5 look 0 0 0 up 0 1 0 fov 45\n{BALL}"),
+    );
+    let o = run(
+        &dir.path,
+        &["-i", "ok.sc", "-o", "a.png", "--stats", "s.json"],
+    );
+    assert_success(&o, "--stats");
+    let text = fs::read_to_string(dir.join("s.json")).unwrap();
+    assert!(!text.contains("-0.0"), "{text}");
+    let json: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let k = &json["views"][0]["K"];
+    assert_eq!(k[0][0], k[1][1], "{k}");
+}
