@@ -45,11 +45,15 @@ use glam::DVec3;
 use wide::f32x8;
 
 /// The intrinsics of a 3x3 matrix `K = [[fx, s, cx], [0, fy, cy], [0, 0, 1]]` as calibrations
-/// give it (module comment: pixel x spans `[x, x + 1)`), or why not: a non-finite entry, a
-/// second or third row other than `[0, fy, cy]` and `[0, 0, 1]`, a skew `s` beyond
-/// `1e-9 fx` (the pinhole has none), a focal length that is not positive
-/// (`scene::validate::intrinsics`).
-pub fn intrinsics_of_matrix(k: &[[f64; 3]; 3]) -> std::result::Result<Intrinsics, String> {
+/// give it (module comment: pixel x spans `[x, x + 1)`), or why not, as an [`Error::Usage`]
+/// (the caller's argument): a non-finite entry, a second or third row other than
+/// `[0, fy, cy]` and `[0, 0, 1]`, a skew `s` beyond `1e-9 fx` (the pinhole has none), a focal
+/// length that is not positive (`scene::validate::intrinsics`).
+pub fn intrinsics_of_matrix(k: &[[f64; 3]; 3]) -> Result<Intrinsics> {
+    intrinsics_of(k).map_err(Error::Usage)
+}
+
+fn intrinsics_of(k: &[[f64; 3]; 3]) -> std::result::Result<Intrinsics, String> {
     if !k.iter().flatten().all(|x| x.is_finite()) {
         return Err("K must be finite".into());
     }
@@ -75,14 +79,39 @@ pub fn intrinsics_of_matrix(k: &[[f64; 3]; 3]) -> std::result::Result<Intrinsics
 }
 
 /// The camera spec of a rig: intrinsics `k` (3x3, [`intrinsics_of_matrix`]) and a 4x4
-/// world-to-camera matrix in OpenCV's axes (`scene::pose::from_world_to_camera`), or why not.
+/// world-to-camera matrix in OpenCV's axes (`scene::pose::from_world_to_camera`), or why not,
+/// as an [`Error::Usage`], so that `?` lifts it into [`crate::Result`] as any other call's.
 /// [`Camera::look_at`] then checks it against an image size.
+///
+/// ```
+/// use lanecast::{Camera, CameraSpec, DVec3, Lens};
+///
+/// fn rig() -> lanecast::Result<(CameraSpec, Camera)> {
+///     let k = [[525.0, 0.0, 319.5], [0.0, 525.0, 239.5], [0.0, 0.0, 1.0]];
+///     let pose = [
+///         [1.0, 0.0, 0.0, 0.0],
+///         [0.0, -1.0, 0.0, 0.0],
+///         [0.0, 0.0, -1.0, 9.0],
+///         [0.0, 0.0, 0.0, 1.0],
+///     ];
+///     let spec = lanecast::spec_from_matrices(&k, &pose)?;
+///     Ok((spec, Camera::look_at(&spec, 640, 480)?))
+/// }
+/// let (spec, camera) = rig()?;
+/// assert_eq!(spec.eye, DVec3::new(0.0, 0.0, 9.0)); // lanecast::DVec3 is glam's
+/// assert!(matches!(spec.lens, Some(Lens::Pinhole(_))));
+/// assert_eq!(camera.k.fx, 525.0);
+/// let skewed = [[525.0, 3.0, 319.5], [0.0, 525.0, 239.5], [0.0, 0.0, 1.0]];
+/// let e = lanecast::spec_from_matrices(&skewed, &[[0.0; 4]; 4]).unwrap_err();
+/// assert_eq!(e.exit_code(), 2);
+/// # Ok::<(), lanecast::Error>(())
+/// ```
 pub fn spec_from_matrices(
     k: &[[f64; 3]; 3],
     world_to_camera: &[[f64; 4]; 4],
-) -> std::result::Result<CameraSpec, String> {
+) -> Result<CameraSpec> {
     let k = intrinsics_of_matrix(k)?;
-    let spec = crate::scene::pose::from_world_to_camera(world_to_camera)?;
+    let spec = crate::scene::pose::from_world_to_camera(world_to_camera).map_err(Error::Usage)?;
     Ok(CameraSpec {
         lens: Some(Lens::Pinhole(k)),
         ..spec

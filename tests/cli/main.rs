@@ -46,6 +46,7 @@ mod determinism;
 mod flags;
 mod help_compare;
 mod invocations;
+mod library;
 mod mesh;
 mod messages;
 mod methods;
