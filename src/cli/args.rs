@@ -165,8 +165,9 @@ pub(super) struct RenderArgs {
     #[arg(long, value_name = "FILE.json")]
     pub(super) stats: Option<PathBuf>,
     /// Render one view per line of FILE (`camera eye X Y Z look X Y Z up X Y Z [fov DEG | K
-    /// FX FY CX CY]`, or `extrinsic M00 .. M33 [K FX FY CX CY]`: a 4x4 world-to-camera matrix,
-    /// OpenCV axes), all from one load of the scene. Outputs take numbered names (-o
+    /// FX FY CX CY]`, or `extrinsic M00 .. M33 [fov DEG | K FX FY CX CY]`: a 4x4
+    /// world-to-camera matrix, OpenCV axes), all from one load of the scene; -fov replaces
+    /// every line's lens. Outputs take numbered names (-o
     /// frames/view_%05d.png, views counted from 0) or -o - (images one after another).
     #[arg(long, value_name = "FILE", conflicts_with = "orbit")]
     pub(super) views: Option<PathBuf>,
