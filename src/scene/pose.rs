@@ -62,14 +62,14 @@ pub fn from_world_to_camera(m: &[[f64; 4]; 4]) -> Result<CameraSpec, String> {
     // the view direction is `look - eye`: where the eye is so far from the origin that f64
     // cannot hold `eye + z` apart from it, the translation is what is wrong
     let lost = ((look - eye) - z).abs().max_element();
-    if !(lost <= RIGID_TOL) {
+    if lost.is_nan() || lost > RIGID_TOL {
         return Err(format!(
-            "the world-to-camera matrix's translation ({} {} {}) puts the eye {:.3e} from the \
+            "the world-to-camera matrix's translation ({:?} {:?} {:?}) puts the eye {:.3e} from the \
              origin: too far for f64 to hold its view direction (R's row z) within {RIGID_TOL:e} \
              (it is off by {lost:.1e}); bring the world's origin nearer the cameras",
-            super::cameras::num(t.x),
-            super::cameras::num(t.y),
-            super::cameras::num(t.z),
+            t.x,
+            t.y,
+            t.z,
             eye.length()
         ));
     }
@@ -99,7 +99,7 @@ mod tests {
             ]
         };
         let e = from_world_to_camera(&m(1e17)).unwrap_err();
-        assert!(e.contains("translation (0 0 100000000000000000)"), "{e}");
+        assert!(e.contains("translation (0.0 0.0 1e17)"), "{e}");
         assert!(e.contains("puts the eye 1.000e17 from the origin"), "{e}");
         assert!(!e.contains("same point"), "{e}");
         let spec = from_world_to_camera(&m(1e6)).unwrap();
