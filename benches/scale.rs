@@ -77,6 +77,7 @@ fn scaling_scene(kind: &str, n: usize) -> Scene {
         })
         .collect::<Vec<_>>();
     Scene {
+        camera_at: None,
         source: format!("{kind}_{n}").into(),
         camera: CameraSpec {
             eye: DVec3::ZERO,

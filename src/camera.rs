@@ -45,11 +45,15 @@ use glam::DVec3;
 use wide::f32x8;
 
 /// The intrinsics of a 3x3 matrix `K = [[fx, s, cx], [0, fy, cy], [0, 0, 1]]` as calibrations
-/// give it (module comment: pixel x spans `[x, x + 1)`), or why not: a non-finite entry, a
-/// second or third row other than `[0, fy, cy]` and `[0, 0, 1]`, a skew `s` beyond
-/// `1e-9 fx` (the pinhole has none), a focal length that is not positive
-/// (`scene::validate::intrinsics`).
-pub fn intrinsics_of_matrix(k: &[[f64; 3]; 3]) -> std::result::Result<Intrinsics, String> {
+/// give it (module comment: pixel x spans `[x, x + 1)`), or why not, as an [`Error::Usage`]
+/// (the caller's argument): a non-finite entry, a second or third row other than
+/// `[0, fy, cy]` and `[0, 0, 1]`, a skew `s` beyond `1e-9 fx` (the pinhole has none), a focal
+/// length that is not positive (`scene::validate::intrinsics`).
+pub fn intrinsics_of_matrix(k: &[[f64; 3]; 3]) -> Result<Intrinsics> {
+    intrinsics_of(k).map_err(Error::Usage)
+}
+
+fn intrinsics_of(k: &[[f64; 3]; 3]) -> std::result::Result<Intrinsics, String> {
     if !k.iter().flatten().all(|x| x.is_finite()) {
         return Err("K must be finite".into());
     }
@@ -75,18 +79,97 @@ pub fn intrinsics_of_matrix(k: &[[f64; 3]; 3]) -> std::result::Result<Intrinsics
 }
 
 /// The camera spec of a rig: intrinsics `k` (3x3, [`intrinsics_of_matrix`]) and a 4x4
-/// world-to-camera matrix in OpenCV's axes (`scene::pose::from_world_to_camera`), or why not.
+/// world-to-camera matrix in OpenCV's axes (`scene::pose::from_world_to_camera`), or why not,
+/// as an [`Error::Usage`], so that `?` lifts it into [`crate::Result`] as any other call's.
 /// [`Camera::look_at`] then checks it against an image size.
+///
+/// ```
+/// use lanecast::{Camera, CameraSpec, DVec3, Lens};
+///
+/// fn rig() -> lanecast::Result<(CameraSpec, Camera)> {
+///     let k = [[525.0, 0.0, 319.5], [0.0, 525.0, 239.5], [0.0, 0.0, 1.0]];
+///     let pose = [
+///         [1.0, 0.0, 0.0, 0.0],
+///         [0.0, -1.0, 0.0, 0.0],
+///         [0.0, 0.0, -1.0, 9.0],
+///         [0.0, 0.0, 0.0, 1.0],
+///     ];
+///     let spec = lanecast::spec_from_matrices(&k, &pose)?;
+///     Ok((spec, Camera::look_at(&spec, 640, 480)?))
+/// }
+/// let (spec, camera) = rig()?;
+/// assert_eq!(spec.eye, DVec3::new(0.0, 0.0, 9.0)); // lanecast::DVec3 is glam's
+/// assert!(matches!(spec.lens, Some(Lens::Pinhole(_))));
+/// assert_eq!(camera.k.fx, 525.0);
+/// let skewed = [[525.0, 3.0, 319.5], [0.0, 525.0, 239.5], [0.0, 0.0, 1.0]];
+/// let e = lanecast::spec_from_matrices(&skewed, &[[0.0; 4]; 4]).unwrap_err();
+/// assert_eq!(e.exit_code(), 2);
+/// # Ok::<(), lanecast::Error>(())
+/// ```
 pub fn spec_from_matrices(
     k: &[[f64; 3]; 3],
     world_to_camera: &[[f64; 4]; 4],
-) -> std::result::Result<CameraSpec, String> {
+) -> Result<CameraSpec> {
     let k = intrinsics_of_matrix(k)?;
-    let spec = crate::scene::pose::from_world_to_camera(world_to_camera)?;
+    let spec = crate::scene::pose::from_world_to_camera(world_to_camera).map_err(Error::Usage)?;
     Ok(CameraSpec {
         lens: Some(Lens::Pinhole(k)),
         ..spec
     })
+}
+
+/// The image-size rule ([`crate::limits::check_size`]) as a camera states it.
+fn check_image(width: u32, height: u32) -> Result<()> {
+    crate::limits::check_size(width as u64, height as u64)
+        .map_err(|why| Error::usage(format!("image size {width}x{height}: {why}")))
+}
+
+/// A field of view's screen and intrinsics for a `width` x `height` image: `half_w =
+/// tan(fov/2)`, `half_h = half_w H / W` (what the rays use), and `fx = W / (2 half_w)`, computed
+/// once and used for `fy` too (the pixels are square), `cx = W/2`, `cy = H/2`.
+fn fov_screen(fov_deg: f64, width: u32, height: u32) -> (f64, f64, Intrinsics) {
+    let half_w = (fov_deg.to_radians() / 2.0).tan();
+    let (w, h) = (width as f64, height as f64);
+    let half_h = half_w * h / w;
+    let fx = w / (2.0 * half_w);
+    let k = Intrinsics {
+        fx,
+        fy: fx,
+        cx: w / 2.0,
+        cy: h / 2.0,
+    };
+    (half_w, half_h, k)
+}
+
+/// The size-dependent rule of a lens, one for both kinds: its intrinsics (a field of view's
+/// are [`fov_screen`]'s) within [`crate::limits::check_lens`] for a `width` x `height` image.
+/// A field of view's refusal says which fields of view the size allows. The lens's own rules
+/// (`scene::validate::camera`) are checked before.
+pub(crate) fn check_lens(lens: &Lens, width: u32, height: u32) -> std::result::Result<(), String> {
+    use crate::limits::{MAX_SCREEN, MIN_SCREEN};
+    match *lens {
+        Lens::Pinhole(k) => crate::limits::check_lens(k.fx, k.fy, k.cx, k.cy, width, height),
+        Lens::Fov(deg) => {
+            let (_, _, k) = fov_screen(deg, width, height);
+            crate::limits::check_lens(k.fx, k.fy, k.cx, k.cy, width, height).map_err(|_| {
+                // the screen's width 2 tan(fov/2) = W / fx, and H / fy = that times H / W
+                let aspect = height as f64 / width as f64;
+                let lo = MIN_SCREEN.max(MIN_SCREEN / aspect);
+                let hi = MAX_SCREEN.min(MAX_SCREEN / aspect);
+                let deg_of = |screen: f64| 2.0 * (screen / 2.0).atan().to_degrees();
+                format!(
+                    "a field of view of {} degrees gives a screen {:.3e} wide at distance 1 \
+                     (W / fx) for a {width}x{height} image; W / fx and H / fy must span \
+                     {MIN_SCREEN:e} to {MAX_SCREEN:e}, as for intrinsics, so at this size the \
+                     field of view must lie within {:.4e} and {:.9} degrees",
+                    crate::scene::cameras::num(deg),
+                    width as f64 / k.fx,
+                    deg_of(lo),
+                    deg_of(hi),
+                )
+            })
+        }
+    }
 }
 
 /// The id band's width in pixels ([`Camera::id_band`]): an eighth of the smallest pixel.
@@ -123,17 +206,26 @@ impl Camera {
     /// The camera of `scene` for a `width` x `height` image, with horizontal field of view
     /// `fov_deg` when given (in place of the scene's lens), else the scene's lens (a field of
     /// view or intrinsics), else [`DEFAULT_FOV`]. Fails as [`Camera::look_at`].
+    /// An error about the scene's own camera (its lens for this size) names the scene's
+    /// `camera` line, `FILE:LINE:COL`, as a views file's line would be named.
     pub fn for_scene(
         scene: &Scene,
         width: u32,
         height: u32,
         fov_deg: Option<f64>,
     ) -> Result<Camera> {
+        check_image(width, height)?;
         let spec = CameraSpec {
             lens: fov_deg.map(Lens::Fov).or(scene.camera.lens),
             ..scene.camera
         };
-        Camera::look_at(&spec, width, height)
+        Camera::look_at(&spec, width, height).map_err(|e| match scene.camera_at {
+            // the caller's fov is the caller's to answer for; the rest is the scene's line
+            Some((line, col)) if fov_deg.is_none() => {
+                Error::input(&scene.source, line, col, e.to_string())
+            }
+            _ => e,
+        })
     }
 
     /// The camera `spec` describes (eye, look, up and its lens, else [`DEFAULT_FOV`]) for a
@@ -143,8 +235,7 @@ impl Camera {
     /// focal length that is not positive), a size outside `1..=limits::MAX_SIDE` per side or
     /// past `limits::MAX_PIXELS`, or intrinsics outside `limits::check_lens` for that size.
     pub fn look_at(spec: &CameraSpec, width: u32, height: u32) -> Result<Camera> {
-        crate::limits::check_size(width as u64, height as u64)
-            .map_err(|why| Error::usage(format!("image size {width}x{height}: {why}")))?;
+        check_image(width, height)?;
         let finite = [spec.eye, spec.look, spec.up].iter().all(|v| v.is_finite());
         if !finite {
             return Err(Error::usage(
@@ -152,29 +243,18 @@ impl Camera {
             ));
         }
         crate::scene::validate::camera(spec).map_err(|m| Error::usage(format!("camera: {m}")))?;
-        match spec.lens {
-            Some(Lens::Pinhole(k)) => {
-                crate::limits::check_lens(k.fx, k.fy, k.cx, k.cy, width, height)
-                    .map_err(|m| Error::usage(format!("camera: {m}")))?;
-                Ok(Camera::pinhole(spec, &k, width, height))
-            }
-            Some(Lens::Fov(fov)) => Ok(Camera::new(spec, fov, width, height)),
-            None => Ok(Camera::new(spec, DEFAULT_FOV, width, height)),
+        let lens = spec.lens.unwrap_or(Lens::Fov(DEFAULT_FOV));
+        check_lens(&lens, width, height).map_err(|m| Error::usage(format!("camera: {m}")))?;
+        match lens {
+            Lens::Pinhole(k) => Ok(Camera::pinhole(spec, &k, width, height)),
+            Lens::Fov(fov) => Ok(Camera::new(spec, fov, width, height)),
         }
     }
 
     /// The camera of a validated spec (`scene::validate::camera` has accepted it) with a
     /// horizontal field of view in degrees, 0 < fov < 180 (the spec's own lens is not read).
     pub fn new(spec: &CameraSpec, fov_deg: f64, width: u32, height: u32) -> Camera {
-        let half_w = (fov_deg.to_radians() / 2.0).tan();
-        let half_h = half_w * height as f64 / width as f64;
-        let (w, h) = (width as f64, height as f64);
-        let k = Intrinsics {
-            fx: w / (2.0 * half_w),
-            fy: h / (2.0 * half_h),
-            cx: w / 2.0,
-            cy: h / 2.0,
-        };
+        let (half_w, half_h, k) = fov_screen(fov_deg, width, height);
         Camera::with_screen(spec, half_w, half_h, k, width, height)
     }
 
@@ -555,7 +635,7 @@ mod tests {
             assert_eq!(cam.screen(), [-hw, hw, -cam.half_h, cam.half_h]);
             assert_eq!(cam.k.cx, w as f64 / 2.0);
             assert!((cam.k.fx / (w as f64 / (2.0 * hw)) - 1.0).abs() < 1e-15);
-            assert!((cam.k.fy / cam.k.fx - 1.0).abs() < 1e-14);
+            assert_eq!(cam.k.fy, cam.k.fx, "square pixels: fy is fx");
         }
     }
 

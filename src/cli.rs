@@ -75,8 +75,11 @@ pub struct ViewSettings {
     pub input: PathBuf,
     pub width: u32,
     pub height: u32,
-    /// From `-fov`; the scene's value or 60 applies when `None`.
+    /// From `-fov`, replacing every lens; the scene's lens (or a views line's), else 60,
+    /// applies when `None`.
     pub fov: Option<f64>,
+    /// `-fov`'s flag and value as typed (`-fov 80`, `--fov 80`), for messages.
+    pub fov_typed: Option<String>,
     pub threads: Option<usize>,
     pub accel: crate::accel::Accel,
     /// The precision (`--precision`; a scalar kernel's own).
@@ -214,7 +217,7 @@ fn parse_raw(raw: &[OsString]) -> Result<Command> {
             }
             Ok(Command::Compare(CompareSettings {
                 // compare's render is the simd kernel's, against the f64 scalar oracle
-                view: view(c.view, &typed, KernelArg::Simd)?,
+                view: view(c.view, &typed, KernelArg::Simd, raw)?,
                 output: c.output,
                 max_mismatch_ppm: c.max_mismatch_ppm,
             }))
@@ -222,9 +225,10 @@ fn parse_raw(raw: &[OsString]) -> Result<Command> {
         None => {
             let typed = Typed { matches: &matches };
             let r = cli.render;
-            let view = view(r.view, &typed, r.kernel)?;
+            let view = view(r.view, &typed, r.kernel, raw)?;
             let source = view_flags::source(r.views, r.orbit);
             let buffers = [&r.ids, &r.depth, &r.zdepth, &r.normals];
+            let typed_output = r.output.is_some();
             let output = match r.output {
                 Some(o) => Some(o),
                 // many views: the outputs named, and images only when nothing else is
@@ -239,7 +243,7 @@ fn parse_raw(raw: &[OsString]) -> Result<Command> {
                 // one view: the image always, beside the input by default
                 None => Some(default_output(&view.input, raw)?),
             };
-            let stdout_format = stdout_format(output.as_deref(), r.format.as_deref())?;
+            let stdout_format = stdout_format(output.as_deref(), typed_output, r.format.as_deref())?;
             let settings = RenderSettings {
                 view,
                 output,
@@ -287,8 +291,13 @@ fn default_output(input: &Path, raw: &[OsString]) -> Result<PathBuf> {
 }
 
 /// The format of an image written to standard output (`-o -`, with `--format`, PNG by default),
-/// or `None` for an image file, whose extension decides (a `--format` that disagrees is refused).
-fn stdout_format(output: Option<&Path>, format: Option<&str>) -> Result<Option<ImageFormat>> {
+/// or `None` for an image file, whose extension decides (a `--format` that disagrees is refused,
+/// naming `-o` when it was `typed`, else the default name), or for a run that writes no image.
+fn stdout_format(
+    output: Option<&Path>,
+    typed: bool,
+    format: Option<&str>,
+) -> Result<Option<ImageFormat>> {
     let named = |f: &str| match f {
         "bmp" => ImageFormat::Bmp,
         _ => ImageFormat::Png,
@@ -308,10 +317,16 @@ fn stdout_format(output: Option<&Path>, format: Option<&str>) -> Result<Option<I
     if let Some(f) = format
         && crate::output::image_format(output).ok() != Some(named(f))
     {
+        let file = if typed {
+            format!("-o {} names a file of another format", output.display())
+        } else {
+            format!(
+                "with no -o the image goes to {}, whose extension gives another format",
+                output.display()
+            )
+        };
         return Err(Error::usage(format!(
-            "--format {f}: -o {} names a file of another format; --format chooses the format \
-             of -o - (standard output) only",
-            output.display()
+            "--format {f}: {file}; --format chooses the format of -o - (standard output) only"
         )));
     }
     Ok(None)
@@ -332,11 +347,17 @@ impl Typed<'_> {
 
 /// The shared options resolved for `kernel` (`simd` for `compare`), refusing the typed
 /// `--precision` that the kernel contradicts.
-fn view(v: View, typed: &Typed, kernel: KernelArg) -> Result<ViewSettings> {
+fn view(v: View, typed: &Typed, kernel: KernelArg, raw: &[OsString]) -> Result<ViewSettings> {
     let (width, height) = parse_size(&v.size)?;
-    if let Some(fov) = v.fov {
-        crate::scene::validate::fov(fov).map_err(|m| Error::usage(format!("--fov {fov}: {m}")))?;
-    }
+    let fov = v
+        .fov
+        .as_deref()
+        .map(|t| parse_fov(t, width, height))
+        .transpose()?;
+    let fov_typed = v
+        .fov
+        .as_deref()
+        .map(|t| respell(&format!("--fov {t}"), raw));
     if v.threads == Some(0) {
         return Err(Error::usage("--threads 0: need at least one thread"));
     }
@@ -354,11 +375,16 @@ fn view(v: View, typed: &Typed, kernel: KernelArg) -> Result<ViewSettings> {
         input: v.input.expect("clap requires --input"),
         width,
         height,
-        fov: v.fov,
+        fov,
+        fov_typed,
         threads: v.threads,
         accel,
         precision,
         camera: CameraOverrides {
+            typed: [("--eye", &v.eye), ("--look", &v.look), ("--up", &v.up)]
+                .iter()
+                .filter_map(|(f, t)| t.as_deref().map(|t| format!("{f} {t}")))
+                .collect(),
             eye: v
                 .eye
                 .as_deref()
@@ -372,6 +398,28 @@ fn view(v: View, typed: &Typed, kernel: KernelArg) -> Result<ViewSettings> {
             up: v.up.as_deref().map(|t| parse_vec3("--up", t)).transpose()?,
         },
     })
+}
+
+/// `--fov DEGREES`, `text` as typed: a finite number strictly between 0 and 180 whose screen
+/// a `width` x `height` image can hold (the rule intrinsics meet too: `camera::check_lens`).
+/// Messages echo the value as typed (`1e400`, `nan`), not as parsed.
+fn parse_fov(text: &str, width: u32, height: u32) -> Result<f64> {
+    let bad = |why: String| Error::usage(format!("--fov {text}: {why}"));
+    let deg: f64 = text
+        .trim()
+        .parse()
+        .ok()
+        .filter(|d: &f64| d.is_finite())
+        .ok_or_else(|| {
+            bad("the field of view must be a finite number of degrees, 0 < FOV < 180".into())
+        })?;
+    if !(deg > 0.0 && deg < 180.0) {
+        return Err(bad(
+            "the field of view must lie strictly between 0 and 180 degrees".into(),
+        ));
+    }
+    crate::camera::check_lens(&crate::scene::Lens::Fov(deg), width, height).map_err(bad)?;
+    Ok(deg)
 }
 
 /// The precision `--precision` names for `kernel`, refusing one that contradicts a scalar

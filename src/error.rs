@@ -45,6 +45,8 @@ pub enum Error {
         file: PathBuf,
         /// 1-based line of `file` that names `path`.
         line: usize,
+        /// 1-based column of `path` on that line (0: none known).
+        col: usize,
         /// The file the operation was on, as resolved (relative to `file`'s folder).
         path: PathBuf,
         /// What was being done, as a verb phrase after "cannot" ("read mesh").
@@ -137,20 +139,28 @@ impl fmt::Display for Error {
             Error::IoAt {
                 file,
                 line,
+                col,
                 path,
                 action,
                 source,
-            } => write!(
-                f,
-                "{}:{line}: cannot {action} {}: {source}",
-                file.display(),
-                path.display()
-            ),
+            } => {
+                let col = if *col > 0 {
+                    format!(":{col}")
+                } else {
+                    String::new()
+                };
+                write!(
+                    f,
+                    "{}:{line}{col}: cannot {action} {}: {source}",
+                    file.display(),
+                    path.display()
+                )
+            }
             Error::Locked { folder, waited } => write!(
                 f,
                 "{}: another lanecast run held this output folder's lock for {} s (it replaces \
                  outputs there one run at a time); nothing written, try again",
-                folder.display(),
+                folder_name(folder),
                 waited.as_secs_f64()
             ),
             Error::Failed(m) => write!(f, "{m}"),
@@ -159,6 +169,18 @@ impl fmt::Display for Error {
 }
 
 impl std::error::Error for Error {}
+
+/// A folder as a message names it: as given, or, for the current folder (`.`, or the empty
+/// folder of a bare file name), "the current folder (ITS ABSOLUTE PATH)".
+fn folder_name(folder: &std::path::Path) -> String {
+    if !(folder.as_os_str().is_empty() || folder == std::path::Path::new(".")) {
+        return folder.display().to_string();
+    }
+    match std::env::current_dir() {
+        Ok(d) => format!("the current folder ({})", d.display()),
+        Err(_) => "the current folder".into(),
+    }
+}
 
 /// `std::result::Result` with lanecast's [`Error`] as the default error type.
 pub type Result<T, E = Error> = std::result::Result<T, E>;

@@ -125,6 +125,12 @@ mod test_rng;
 pub(crate) mod words;
 pub mod world;
 
+/// The vector library of [`CameraSpec`] (`glam::DVec3`) and the rest of the API, re-exported
+/// so that a caller need not depend on the same glam version: `lanecast::glam::DVec3`, or
+/// [`DVec3`] itself.
+pub use glam;
+pub use glam::DVec3;
+
 pub use accel::Accel;
 pub use camera::{Camera, DEFAULT_FOV, intrinsics_of_matrix, spec_from_matrices};
 pub use error::{Error, Result};

@@ -48,7 +48,7 @@ pub(crate) fn check_lens(
         let screen = side / f;
         if !(MIN_SCREEN..=MAX_SCREEN).contains(&screen) {
             return Err(format!(
-                "{name} = {screen:e} for a {width}x{height} image: the screen at distance 1 must \
+                "{name} = {screen:.3e} for a {width}x{height} image: the screen at distance 1 must \
                  span {MIN_SCREEN:e} to {MAX_SCREEN:e}"
             ));
         }

@@ -44,7 +44,7 @@ mod stale;
 #[cfg(feature = "cli")]
 pub(crate) use complete::{Expected, is_complete};
 use lock::lock_wait;
-pub use npy::{npy_f32, npy_f32x3, npy_i32, write_npy_f32, write_npy_i32};
+pub use npy::{npy_f32, npy_f32x3, npy_i32, write_npy_f32, write_npy_f32x3, write_npy_i32};
 use npy::{npy_fill, npy3_fill};
 pub use pattern::Pattern;
 #[cfg(feature = "cli")]

@@ -67,7 +67,11 @@ impl ViewRecord {
     /// `K`, `world_to_camera`, `outputs`, `skipped`, and its times when it rendered.
     fn json(&self, times: Option<&ViewTimes>) -> serde_json::Value {
         use crate::scene::Lens;
-        let v = |v: glam::DVec3| serde_json::json!([v.x, v.y, v.z]);
+        // -0.0 (a rotation's zeros, negated) written as 0.0: `x + 0.0` is +0.0 for either zero
+        let z = |x: f64| x + 0.0;
+        let v = |v: glam::DVec3| serde_json::json!([z(v.x), z(v.y), z(v.z)]);
+        let m3 = self.camera.k_matrix().map(|r| r.map(z));
+        let m4 = self.camera.world_to_camera().map(|r| r.map(z));
         let mut camera = serde_json::json!({
             "eye": v(self.spec.eye), "look": v(self.spec.look), "up": v(self.spec.up),
         });
@@ -83,8 +87,8 @@ impl ViewRecord {
             .collect();
         let mut record = serde_json::json!({
             "camera": camera,
-            "K": self.camera.k_matrix(),
-            "world_to_camera": self.camera.world_to_camera(),
+            "K": m3,
+            "world_to_camera": m4,
             "outputs": outputs,
             "skipped": self.skipped,
         });

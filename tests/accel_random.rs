@@ -75,6 +75,7 @@ fn scaled(scene: &Scene, s: f64) -> Scene {
     Scene {
         source: scene.source.clone(),
         camera: scene.camera,
+        camera_at: scene.camera_at,
         shapes,
         warnings: Vec::new(),
     }

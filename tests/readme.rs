@@ -328,3 +328,43 @@ fn readme_binary_size_is_the_binarys() {
         "README says {mib} MiB, the binary is {actual:.2} MiB ({bytes} bytes)"
     );
 }
+
+/// README's usage lines name every flag of `lanecast --help` (in the spelling README uses: the
+/// single-dash forms of the original command line), and README and `--help` both say that an
+/// `extrinsic` line takes `fov` as well as `K`.
+#[cfg(feature = "cli")]
+#[test]
+fn readme_usage_names_every_flag_and_extrinsic_lenses() {
+    let readme = readme();
+    let usage: String = (readme.lines())
+        .skip_while(|l| !l.starts_with("    lanecast -i SCENE.sc"))
+        .take_while(|l| l.starts_with("    "))
+        .collect();
+    let help = stdout(&run(Path::new("."), &["--help"]));
+    let single = [
+        ("--input", "-i"),
+        ("--output", "-o"),
+        ("--size", "-size"),
+        ("--fov", "-fov"),
+        ("--color-mode", "-cm"),
+        ("--color-variation", "-cv"),
+        ("--time", "-time"),
+        ("--zdepth", "--zdepth"),
+    ];
+    let flags = help.split(|c: char| !(c.is_ascii_alphanumeric() || c == '-'));
+    for flag in flags.filter(|w| w.starts_with("--") && w.len() > 2) {
+        if ["--help", "--version"].contains(&flag) {
+            continue;
+        }
+        let spelled = single
+            .iter()
+            .find(|(l, _)| *l == flag)
+            .map_or(flag, |(_, s)| s);
+        assert!(
+            usage.contains(spelled),
+            "README's usage lacks {spelled}: {usage}"
+        );
+    }
+    assert!(help.contains("extrinsic M00 .. M33 [fov DEG | K"), "{help}");
+    assert!(readme.contains("extrinsic M00 .. M33 [K FX\n  FY CX CY | fov DEG]"));
+}

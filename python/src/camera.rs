@@ -69,7 +69,7 @@ impl PyCamera {
         width: u32,
         height: u32,
     ) -> Result<PyCamera, String> {
-        let spec = lanecast::spec_from_matrices(&k, &e)?;
+        let spec = lanecast::spec_from_matrices(&k, &e).map_err(|e| e.to_string())?;
         lanecast::Camera::look_at(&spec, width, height).map_err(|e| e.to_string())?;
         Ok(PyCamera {
             spec,

@@ -190,6 +190,7 @@ pub(crate) fn from_state(state: SceneState<'_>) -> PyResult<Scene> {
         }
     }
     Ok(Scene {
+        camera_at: None,
         source,
         camera: CameraSpec {
             eye: glam::DVec3::from_array(eye),

@@ -251,6 +251,7 @@ mod tests {
             })
             .collect();
         let scene = Scene {
+            camera_at: None,
             source: "line.sc".into(),
             camera: CameraSpec {
                 eye: DVec3::ZERO,

@@ -66,10 +66,11 @@ pub(super) struct View {
         allow_hyphen_values = true
     )]
     pub(super) size: String,
-    /// Horizontal field of view in degrees, 0 < FOV < 180 [default: the scene's, else 60]
+    /// Horizontal field of view in degrees, 0 < FOV < 180, replacing every lens (the scene's,
+    /// each --views line's; a replaced K is noted on stderr) [default: the scene's, else 60]
     /// (single-dash form: -fov).
     #[arg(long, value_name = "DEGREES", allow_negative_numbers = true)]
-    pub(super) fov: Option<f64>,
+    pub(super) fov: Option<String>,
     /// Worker threads [default: all cores].
     #[arg(long, value_name = "N")]
     pub(super) threads: Option<usize>,
@@ -138,7 +139,8 @@ pub(super) struct RenderArgs {
     #[arg(long, value_enum, default_value = "simd")]
     pub(super) kernel: KernelArg,
     /// Seed of the random colour mode (refused with -cm ordered and -cm shade, which have none).
-    #[arg(long, value_name = "N", default_value_t = 0)]
+    #[arg(long, value_name = "N", default_value_t = 0, allow_negative_numbers = true,
+          value_parser = seed_value)]
     pub(super) seed: u64,
     /// Also write per-pixel primitive ids (int32, -1 = background) as a (H, W) .npy file.
     #[arg(long, value_name = "FILE.npy")]
@@ -163,8 +165,9 @@ pub(super) struct RenderArgs {
     #[arg(long, value_name = "FILE.json")]
     pub(super) stats: Option<PathBuf>,
     /// Render one view per line of FILE (`camera eye X Y Z look X Y Z up X Y Z [fov DEG | K
-    /// FX FY CX CY]`, or `extrinsic M00 .. M33 [K FX FY CX CY]`: a 4x4 world-to-camera matrix,
-    /// OpenCV axes), all from one load of the scene. Outputs take numbered names (-o
+    /// FX FY CX CY]`, or `extrinsic M00 .. M33 [fov DEG | K FX FY CX CY]`: a 4x4
+    /// world-to-camera matrix, OpenCV axes), all from one load of the scene; -fov replaces
+    /// every line's lens. Outputs take numbered names (-o
     /// frames/view_%05d.png, views counted from 0) or -o - (images one after another).
     #[arg(long, value_name = "FILE", conflicts_with = "orbit")]
     pub(super) views: Option<PathBuf>,
@@ -201,6 +204,17 @@ pub(super) struct CompareArgs {
         allow_negative_numbers = true
     )]
     pub(super) max_mismatch_ppm: f64,
+}
+
+/// `--seed N`'s value, with the reason a bad one is refused (clap's message names the flag and
+/// the value as typed, a negative one included).
+fn seed_value(s: &str) -> Result<u64, String> {
+    s.parse().map_err(|_| {
+        format!(
+            "the seed must be a non-negative whole number, 0 to {}",
+            u64::MAX
+        )
+    })
 }
 
 /// `--orbit N`'s value, with the reason a bad one is refused (clap's message names the flag

@@ -3,11 +3,13 @@
 use crate::error::{Error, Result};
 
 /// `--eye`, `--look` and `--up`: each replaces that part of the scene's camera.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct CameraOverrides {
     pub eye: Option<glam::DVec3>,
     pub look: Option<glam::DVec3>,
     pub up: Option<glam::DVec3>,
+    /// The flags given, each with its value as typed (`--eye 1e30,0,0`), for messages.
+    pub typed: Vec<String>,
 }
 
 impl CameraOverrides {
@@ -20,18 +22,13 @@ impl CameraOverrides {
         spec.eye = self.eye.unwrap_or(spec.eye);
         spec.look = self.look.unwrap_or(spec.look);
         spec.up = self.up.unwrap_or(spec.up);
-        crate::scene::validate::camera(spec).map_err(|m| {
-            let flags: Vec<&str> = [
-                ("--eye", self.eye),
-                ("--look", self.look),
-                ("--up", self.up),
-            ]
-            .iter()
-            .filter(|(_, v)| v.is_some())
-            .map(|(f, _)| *f)
-            .collect();
-            Error::usage(format!("{}: {m}", flags.join(", ")))
-        })
+        crate::scene::validate::camera(spec).map_err(|m| self.blame(m))
+    }
+
+    /// A usage error naming the flags given, as typed, before `why`: what the camera they
+    /// make cannot do (`--eye 1e30,0,0: ...`).
+    pub fn blame(&self, why: impl std::fmt::Display) -> Error {
+        Error::usage(format!("{}: {why}", self.typed.join(" ")))
     }
 }
 

@@ -45,6 +45,16 @@ fn long_forms_parse_the_same() {
         "--input s.sc --output o.png --size 320x200 --fov 45 --color-mode ordered \
          --color-variation log --time",
     );
+    // the same settings; only -fov's spelling, kept for messages, is the one typed
+    assert_eq!(a.view.fov_typed.as_deref(), Some("-fov 45"));
+    assert_eq!(b.view.fov_typed.as_deref(), Some("--fov 45"));
+    let b = RenderSettings {
+        view: ViewSettings {
+            fov_typed: a.view.fov_typed.clone(),
+            ..b.view
+        },
+        ..b
+    };
     assert_eq!(a, b);
 }
 

@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use super::{image_format, write_image, write_npy_f32, write_npy_i32};
+use super::{image_format, write_image, write_npy_f32, write_npy_f32x3, write_npy_i32};
 use crate::camera::Camera;
 use crate::scene::Scene;
 use crate::shade::{ColorMode, Variation};
@@ -39,6 +39,15 @@ impl Frame<f32> {
     pub fn write_depth(&self, path: &Path) -> Result<()> {
         write_npy_f32(path, self.width, self.height, &self.depth)
     }
+
+    /// Writes the unit surface normals ([`Frame::normals`], of the scene and camera the frame
+    /// was rendered with) as a `height` x `width` x 3 NumPy array of little-endian f32
+    /// (`.npy`; 0, 0, 0 for background), atomically ([`write_npy_f32x3`]): the command line's
+    /// `--normals` file.
+    pub fn write_normals(&self, path: &Path, (scene, camera): (&Scene, &Camera)) -> Result<()> {
+        let normals = self.normals(scene, camera);
+        write_npy_f32x3(path, self.width, self.height, &normals)
+    }
 }
 
 #[cfg(test)]
@@ -71,6 +80,12 @@ mod tests {
             .unwrap();
         frame.write_ids(&ids).unwrap();
         frame.write_depth(&depth).unwrap();
+        let normals = dir.join("n.npy");
+        frame.write_normals(&normals, (&scene, &camera)).unwrap();
+        assert_eq!(
+            fs::read(&normals).unwrap(),
+            crate::output::npy_f32x3(33, 17, &frame.normals(&scene, &camera))
+        );
         assert_eq!(
             fs::read(&ids).unwrap(),
             crate::output::npy_i32(33, 17, &frame.ids)
@@ -108,7 +123,7 @@ mod tests {
             .map(|e| e.unwrap().file_name().into_string().unwrap())
             .collect();
         names.sort();
-        assert_eq!(names, ["a.png", "d.npy", "ids.npy"]);
+        assert_eq!(names, ["a.png", "d.npy", "ids.npy", "n.npy"]);
         fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -170,6 +170,15 @@ pub fn write_npy_f32(path: &Path, width: u32, height: u32, data: &[f32]) -> Resu
     )
 }
 
+/// Writes a `height` x `width` x 3 f32 array (three values a pixel, row-major) as `.npy`,
+/// atomically: the `--normals` file, byte for byte ([`npy_f32x3`]; `Frame::write_normals`).
+pub fn write_npy_f32x3(path: &Path, width: u32, height: u32, data: &[[f32; 3]]) -> Result<()> {
+    write_atomic_with(
+        path,
+        npy3_fill(path, (width as usize, height as usize), data)?,
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -59,9 +59,13 @@ impl Pattern {
                 digits.push(d);
                 chars.next();
             }
-            if chars.next() != Some('d') || (!digits.is_empty() && !digits.starts_with('0')) {
+            let next = chars.next();
+            if next != Some('d') || (!digits.is_empty() && !digits.starts_with('0')) {
+                // the conversion as typed: its digits and the character that ends it
+                let conversion = format!("%{digits}{}", next.map(String::from).unwrap_or_default());
                 return Err(bad(format!(
-                    "'%{digits}' is not a number conversion (%d or %0Nd; %% for a percent sign)"
+                    "'{conversion}' is not a number conversion (the accepted ones are %d and \
+                     %0Nd, N from 1 to {MAX_WIDTH}; %% for a percent sign)"
                 )));
             }
             if width.is_some() {
@@ -119,8 +123,8 @@ mod tests {
         assert_eq!(p("%d.npy").unwrap().name(7), PathBuf::from("7.npy"));
         assert_eq!(
             p("100%%/a%%_%3d.bmp").unwrap_err().to_string(),
-            "-o 100%%/a%%_%3d.bmp: '%3' is not a number conversion (%d or %0Nd; %% for a \
-             percent sign); several views need a numbered name in ffmpeg's convention, such as \
+            "-o 100%%/a%%_%3d.bmp: '%3d' is not a number conversion (the accepted ones are %d \
+             and %0Nd, N from 1 to 20; %% for a percent sign); several views need a numbered name in ffmpeg's convention, such as \
              frames/view_%05d.png (%d, or %0Nd for N digits)"
         );
         assert_eq!(

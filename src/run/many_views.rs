@@ -119,11 +119,12 @@ impl Numbered {
     }
 }
 
-/// The cameras of the run, with the lens each uses: a views file's line's own (a field of view
-/// or intrinsics), else `-fov`, else the scene's, else the default; an orbit's from the scene's
-/// camera (with `--eye`, `--look`, `--up` applied) and `-fov`, else the scene's lens.
-/// Each camera comes with its spec, the lens filled in (the default field of view where none
-/// is given): what `--stats` records and `--save-views` writes.
+/// The cameras of the run, with the lens each uses, one rule for every view: `-fov` when
+/// given (replacing every lens), else a views file's line's own (a field of view or
+/// intrinsics), else the scene's, else the default; an orbit's from the scene's camera (with
+/// `--eye`, `--look`, `--up` applied). Where `-fov` replaces intrinsics, a note on stderr
+/// says so, once. Each camera comes with its spec, the lens filled in (the default field of
+/// view where none is given): what `--stats` records and `--save-views` writes.
 fn cameras(
     s: &RenderSettings,
     source: &ViewSource,
@@ -131,14 +132,19 @@ fn cameras(
     scene: &Scene,
 ) -> Result<Vec<(CameraSpec, crate::Camera)>> {
     let (w, h) = (s.view.width, s.view.height);
-    let lens = s.view.fov.map(Lens::Fov).or(scene.camera.lens);
+    let fallback = scene.camera.lens;
+    let lens = s.view.fov.map(Lens::Fov).or(fallback);
     let lens = lens.unwrap_or(Lens::Fov(crate::camera::DEFAULT_FOV));
+    if let Some(typed) = &s.view.fov_typed {
+        note_replaced_intrinsics(typed, source, lines, scene)?;
+    }
     match source {
         ViewSource::File(file) => lines
             .iter()
             .map(|l| {
+                let own = s.view.fov.map(Lens::Fov).or(l.camera.lens);
                 let spec = CameraSpec {
-                    lens: Some(l.camera.lens.unwrap_or(lens)),
+                    lens: Some(own.unwrap_or(lens)),
                     ..l.camera
                 };
                 crate::Camera::look_at(&spec, w, h)
@@ -162,6 +168,45 @@ fn cameras(
                 .collect()
         }
     }
+}
+
+/// The note that `-fov` (`typed`) replaces the intrinsics some views would have used: a
+/// views line's own `K`, or the scene's for a line with no lens and for an orbit.
+fn note_replaced_intrinsics(
+    typed: &str,
+    source: &ViewSource,
+    lines: &[ViewLine],
+    scene: &Scene,
+) -> Result<()> {
+    let scene_k = matches!(scene.camera.lens, Some(Lens::Pinhole(_)));
+    let at = |line: usize| format!("{}:{line}", scene.source.display());
+    let replaced: Vec<usize> = match source {
+        ViewSource::File(_) => (lines.iter())
+            .filter(|l| match l.camera.lens {
+                Some(Lens::Pinhole(_)) => true,
+                None => scene_k,
+                Some(Lens::Fov(_)) => false,
+            })
+            .map(|l| l.line)
+            .collect(),
+        ViewSource::Orbit(_) => Vec::new(),
+    };
+    let what = match source {
+        ViewSource::File(f) if !replaced.is_empty() => format!(
+            "the intrinsics of {} (first: {}:{})",
+            crate::words::count(replaced.len(), "view", "views"),
+            f.display(),
+            replaced[0]
+        ),
+        ViewSource::Orbit(_) if scene_k => format!(
+            "the scene's intrinsics ({})",
+            at(scene.camera_at.map_or(0, |a| a.0))
+        ),
+        _ => return Ok(()),
+    };
+    super::say::note(&format!(
+        "{typed} replaces {what}: a centred camera with square pixels"
+    ))
 }
 
 /// The `--save-views` file's name checked: its extension (`.txt`), against every file the run

@@ -12,7 +12,8 @@ use crate::camera::Camera;
 use crate::cli::{Command, ViewSettings};
 use crate::error::{Error, Result};
 use crate::output::OutputSet;
-use crate::scene::{Scene, load_scene_meshes};
+use crate::scene::cameras::num;
+use crate::scene::{Lens, Scene, load_scene_meshes};
 use std::path::PathBuf;
 
 /// Runs a parsed command line.
@@ -49,8 +50,24 @@ fn load_view(v: &ViewSettings, set: &OutputSet) -> Result<(Scene, Camera)> {
     frame_mesh_alone(&mut scene, v, false);
     v.camera.apply(&mut scene.camera)?;
     if v.camera.eye.is_some() {
-        // the range rule is relative to the eye (kernels work eye-relative): check it again
-        crate::scene::range::f32_range(&scene)?;
+        // the range rule is relative to the eye (kernels work eye-relative): check it again,
+        // a refusal the flag's (the scene passed from its own eye)
+        crate::scene::range::f32_range(&scene)
+            .map_err(|e| v.camera.blame(format_args!("seen from this eye, {e}")))?;
+    }
+    if let (Some(typed), Some(Lens::Pinhole(k))) = (&v.fov_typed, scene.camera.lens) {
+        let at = scene
+            .camera_at
+            .map_or(String::new(), |(l, c)| format!(":{l}:{c}"));
+        say::note(&format!(
+            "{typed} replaces the scene's intrinsics ({}{at}: K {} {} {} {}): a centred camera \
+             with square pixels",
+            scene.source.display(),
+            num(k.fx),
+            num(k.fy),
+            num(k.cx),
+            num(k.cy)
+        ))?;
     }
     let camera = Camera::for_scene(&scene, v.width, v.height, v.fov)?;
     Ok((scene, camera))

@@ -57,6 +57,19 @@ pub(super) fn warn(warning: &str) -> Result<()> {
     }
 }
 
+/// Writes a note (`lanecast: note: ...`) to standard error, as [`warn`] does a warning.
+pub(super) fn note(note: &str) -> Result<()> {
+    let text = format!("lanecast: note: {note}\n");
+    match write(Stream::Stderr, "write a note", &text)? {
+        true => Ok(()),
+        false => Err(Error::io(
+            Stream::Stderr.name(),
+            "write a note",
+            io::Error::from(io::ErrorKind::BrokenPipe),
+        )),
+    }
+}
+
 fn write_to(w: &mut impl Write, text: &str) -> io::Result<()> {
     w.write_all(text.as_bytes())?;
     w.flush()

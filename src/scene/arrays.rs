@@ -145,6 +145,7 @@ pub fn scene_from_arrays(
         shapes.push(shape, m + j + 1);
     }
     let scene = Scene {
+        camera_at: None,
         source: source.to_path_buf(),
         camera,
         shapes,

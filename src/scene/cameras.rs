@@ -40,16 +40,13 @@ pub fn load_views(path: &Path) -> Result<Vec<ViewLine>> {
         Some("views files"),
     )?;
     let text = std::str::from_utf8(&bytes).map_err(|e| {
-        let line = bytes[..e.valid_up_to()]
-            .iter()
-            .filter(|&&b| b == b'\n')
-            .count();
-        Error::input(
-            path,
-            line + 1,
-            0,
-            "not valid UTF-8; views files must be UTF-8 text",
-        )
+        // the line and column of the first byte that is not UTF-8
+        let valid = &bytes[..e.valid_up_to()];
+        let start = valid.iter().rposition(|&b| b == b'\n').map_or(0, |k| k + 1);
+        let line = valid.iter().filter(|&&b| b == b'\n').count() + 1;
+        let col = String::from_utf8_lossy(&valid[start..]).chars().count() + 1;
+        let msg = "not valid UTF-8; views files must be UTF-8 text";
+        Error::input(path, line, col, msg)
     })?;
     parse_views(text, path)
 }
@@ -129,7 +126,9 @@ pub fn parse_views(text: &str, file: &Path) -> Result<Vec<ViewLine>> {
     if views.is_empty() {
         return Err(Error::InputFile {
             file: file.to_path_buf(),
-            msg: format!("no camera lines (one view a line: `{CAMERA_SYNTAX}`)"),
+            msg: format!(
+                "no camera lines (one view a line: `{CAMERA_SYNTAX}` or `{EXTRINSIC_SYNTAX}`)"
+            ),
         });
     }
     Ok(views)

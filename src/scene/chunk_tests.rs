@@ -18,6 +18,7 @@ use std::path::Path;
 fn sequential_scene(text: &str, file: &Path, max_primitives: usize) -> Result<Scene> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut camera: Option<(CameraSpec, usize)> = None;
+    let mut camera_at = None;
     let (mut shapes, mut toks) = (Shapes::new(), Vec::new());
     for (i, raw) in text.split('\n').enumerate() {
         let line = raw.strip_suffix('\r').unwrap_or(raw);
@@ -47,6 +48,7 @@ fn sequential_scene(text: &str, file: &Path, max_primitives: usize) -> Result<Sc
                     ));
                 }
                 camera = Some((parse_camera(&ctx, &toks)?, ctx.line));
+                camera_at = Some((ctx.line, ctx.col(&toks[0])));
             }
             "mesh" => {
                 if content[first.off + first.s.len()..].trim().is_empty() {
@@ -81,6 +83,7 @@ fn sequential_scene(text: &str, file: &Path, max_primitives: usize) -> Result<Sc
     Ok(Scene {
         source,
         camera,
+        camera_at,
         shapes,
         warnings,
     })
@@ -195,7 +198,8 @@ fn scene_agrees(text: &[u8], max: usize) -> String {
 
 fn obj_agrees(text: &[u8], max: usize) -> String {
     let f = Path::new("m.obj");
-    let want = show(sequential_obj(text, f, max));
+    // the columns are found after either reader, from the line (`obj::with_column`)
+    let want = show(sequential_obj(text, f, max).map_err(|e| super::obj::with_column(e, text)));
     for chunk in (1..=text.len() + 1).chain([usize::MAX]) {
         let got = show(triangles(parse_chunked(text, f, max, chunk)));
         assert_eq!(got, want, "chunks of {chunk} bytes, text {text:?}");
@@ -347,7 +351,7 @@ fn meshes_splice_in_at_their_line_in_any_chunking() {
         let e = parse_bytes(text.as_bytes(), &sc, 3, chunk)
             .unwrap_err()
             .to_string();
-        assert!(e.contains("q.obj:5: too many triangles"), "{e}");
+        assert!(e.contains("q.obj:5:1: too many triangles"), "{e}");
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
@@ -375,13 +379,38 @@ fn meshes_agree_wherever_they_are_cut() {
     ] {
         obj_agrees(text.as_bytes(), 100);
     }
+    // an error names the offending token's column, or the statement's first
+    for (text, want) in [
+        (
+            format!("{quad}f 1 2 3\n  f 1 2 9\n"),
+            "m.obj:6:9: vertex index 9 is out",
+        ),
+        (
+            format!("{quad}v 1 2 nan\n"),
+            "m.obj:5:7: 'nan' is not a finite number",
+        ),
+        (
+            format!("{quad}f 1/1 x 3\n"),
+            "m.obj:5:7: 'x' is not a vertex index",
+        ),
+        (
+            format!("{quad}\tv 1 2\n"),
+            "m.obj:5:2: vertex needs 3 coordinates",
+        ),
+    ] {
+        let got = obj_agrees(text.as_bytes(), 100);
+        assert!(got.starts_with(&format!("error: {want}")), "{got}");
+    }
     let mut bad = quad.as_bytes().to_vec();
     bad.extend_from_slice(b"f 1 2 3\n# \xff\nf 1 2 9\n");
     let got = obj_agrees(&bad, 100);
-    assert!(got.starts_with("error: m.obj:6: not valid UTF-8"), "{got}");
+    assert!(
+        got.starts_with("error: m.obj:6:3: not valid UTF-8"),
+        "{got}"
+    );
     let got = obj_agrees(format!("{quad}{}", "f 1 2 3 4\n".repeat(9)).as_bytes(), 11);
     assert!(
-        got.starts_with("error: m.obj:10: too many triangles"),
+        got.starts_with("error: m.obj:10:1: too many triangles"),
         "{got}"
     );
 }
@@ -429,7 +458,7 @@ proptest! {
     fn random_meshes_agree(lines in prop::collection::vec(obj_line(), 0..40), max in 1usize..40, chunk in 1usize..200) {
         let text = lines.join("\n");
         let f = Path::new("m.obj");
-        prop_assert_eq!(show(triangles(parse_chunked(text.as_bytes(), f, max, chunk))), show(sequential_obj(text.as_bytes(), f, max)));
+        prop_assert_eq!(show(triangles(parse_chunked(text.as_bytes(), f, max, chunk))), show(sequential_obj(text.as_bytes(), f, max).map_err(|e| super::obj::with_column(e, text.as_bytes()))));
     }
 
     /// The fast line reader takes a line only as the general reader would.

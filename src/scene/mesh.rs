@@ -104,6 +104,16 @@ pub(super) fn parse_chunked(
     max_triangles: usize,
     chunk_bytes: usize,
 ) -> Result<(Mesh, usize)> {
+    parse_chunks(bytes, path, max_triangles, chunk_bytes).map_err(|e| obj::with_column(e, bytes))
+}
+
+/// [`parse_chunked`], its errors' columns not yet found.
+fn parse_chunks(
+    bytes: &[u8],
+    path: &Path,
+    max_triangles: usize,
+    chunk_bytes: usize,
+) -> Result<(Mesh, usize)> {
     let parts = chunks::split(bytes, chunk_bytes);
     let read =
         |c: &Chunk, budget: &Budget| obj::read(&bytes[c.range.clone()], c.first_line, path, budget);

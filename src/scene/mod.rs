@@ -139,6 +139,10 @@ pub struct Scene {
     pub source: PathBuf,
     /// The scene's `camera` statement.
     pub camera: CameraSpec,
+    /// Where that statement is: the 1-based line and column of its first token, for the
+    /// camera's messages that depend on the image size (`Camera::for_scene`); `None` for a
+    /// camera no file wrote (a mesh rendered alone, a scene from arrays).
+    pub camera_at: Option<(usize, usize)>,
     /// Every primitive in file order, a mesh's triangles at its place; the index is the id.
     /// Each with its 1-based source line for messages (`Shapes::line`): a mesh's triangles all
     /// carry the line of their `mesh` statement. Meshes are kept indexed (see [`Shapes`]).

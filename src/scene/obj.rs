@@ -417,3 +417,61 @@ impl<'a> Corners<'a> {
         Error::input(path, line, 0, msg)
     }
 }
+
+/// `e` with a column where it names a line of the OBJ `bytes` without one: the offending
+/// token's (the one a message quotes, or the vertex index it names), the first invalid byte's
+/// (not UTF-8), else the line's first token's (the statement as a whole). The readers keep
+/// lines, not columns, so the line is looked at again here: an error's cost only.
+pub(super) fn with_column(e: Error, bytes: &[u8]) -> Error {
+    let Error::Input {
+        file,
+        line,
+        col: 0,
+        msg,
+    } = e
+    else {
+        return e;
+    };
+    let body = bytes.strip_prefix("\u{feff}".as_bytes()).unwrap_or(bytes);
+    let col = chunks::lines(body)
+        .nth(line.saturating_sub(1))
+        .map_or(0, |r| column(&body[r], &msg));
+    Error::Input {
+        file,
+        line,
+        col,
+        msg,
+    }
+}
+
+/// The 1-based column on the OBJ line `raw` that the message `msg` is about ([`with_column`]).
+fn column(raw: &[u8], msg: &str) -> usize {
+    let text = match std::str::from_utf8(raw) {
+        Ok(t) => t,
+        Err(e) => {
+            return String::from_utf8_lossy(&raw[..e.valid_up_to()])
+                .chars()
+                .count()
+                + 1;
+        }
+    };
+    let content = text.split('#').next().unwrap_or("");
+    let toks: Vec<&str> = content.split_ascii_whitespace().collect();
+    let quoted = (msg.strip_prefix('\''))
+        .and_then(|m| m.split_once('\''))
+        .map(|(t, _)| t);
+    let index = (msg.strip_prefix("vertex index "))
+        .and_then(|m| m.split(' ').next())
+        .filter(|n| !n.is_empty());
+    let named = |t: &&str| Some(*t) == quoted || (index.is_some() && t.split('/').next() == index);
+    let first = toks.first().copied();
+    match toks.iter().skip(1).find(|t| named(t)).copied().or(first) {
+        Some(t) => {
+            text[..t.as_ptr() as usize - text.as_ptr() as usize]
+                .chars()
+                .count()
+                + 1
+        }
+        None => 1,
+    }
+}

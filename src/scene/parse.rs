@@ -275,6 +275,7 @@ fn join(
 ) -> std::result::Result<Scene, Halt> {
     meshes.clear();
     let mut camera: Option<(CameraSpec, usize)> = None;
+    let mut camera_at = None;
     let mut pieces = Vec::new();
     let mut total = 0;
     let mut warnings = Vec::new();
@@ -306,6 +307,7 @@ fn join(
                         return Err(second_camera(file, line, col, first).into());
                     }
                     camera = Some((spec, line));
+                    camera_at = Some((line, col));
                 }
                 Event::Mesh {
                     line,
@@ -370,6 +372,7 @@ fn join(
     Ok(Scene {
         source: file.to_path_buf(),
         camera,
+        camera_at,
         shapes: Shapes::assemble(shapes, lines, parts),
         warnings,
     })
@@ -452,6 +455,7 @@ pub(super) fn mesh_scene(path: &Path, (mesh, degenerate): (Mesh, usize)) -> Resu
     Ok(Scene {
         source: path.to_path_buf(),
         camera,
+        camera_at: None,
         shapes,
         warnings,
     })
@@ -552,6 +556,7 @@ fn load_mesh(
         Error::Io { source, .. } => Error::IoAt {
             file: file.to_path_buf(),
             line,
+            col,
             path: path.to_path_buf(),
             action: "read mesh",
             source,

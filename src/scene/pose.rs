@@ -58,9 +58,24 @@ pub fn from_world_to_camera(m: &[[f64; 4]; 4]) -> Result<CameraSpec, String> {
     }
     let t = DVec3::new(m[0][3], m[1][3], m[2][3]);
     let eye = -(x * t.x + y * t.y + z * t.z);
+    let look = eye + z;
+    // the view direction is `look - eye`: where the eye is so far from the origin that f64
+    // cannot hold `eye + z` apart from it, the translation is what is wrong
+    let lost = ((look - eye) - z).abs().max_element();
+    if lost.is_nan() || lost > RIGID_TOL {
+        return Err(format!(
+            "the world-to-camera matrix's translation ({:?} {:?} {:?}) puts the eye {:.3e} from the \
+             origin: too far for f64 to hold its view direction (R's row z) within {RIGID_TOL:e} \
+             (it is off by {lost:.1e}); bring the world's origin nearer the cameras",
+            t.x,
+            t.y,
+            t.z,
+            eye.length()
+        ));
+    }
     Ok(CameraSpec {
         eye,
-        look: eye + z,
+        look,
         up: -y,
         lens: None,
     })
@@ -70,6 +85,26 @@ pub fn from_world_to_camera(m: &[[f64; 4]; 4]) -> Result<CameraSpec, String> {
 mod tests {
     use super::*;
     use crate::test_rng::Rng;
+
+    /// A translation too large for the view direction to survive `eye + z` is named as such,
+    /// not as an eye on its look point.
+    #[test]
+    fn a_translation_too_far_is_named() {
+        let m = |t: f64| {
+            [
+                [1.0, 0.0, 0.0, 0.0],
+                [0.0, -1.0, 0.0, 0.0],
+                [0.0, 0.0, -1.0, t],
+                [0.0, 0.0, 0.0, 1.0],
+            ]
+        };
+        let e = from_world_to_camera(&m(1e17)).unwrap_err();
+        assert!(e.contains("translation (0.0 0.0 1e17)"), "{e}");
+        assert!(e.contains("puts the eye 1.000e17 from the origin"), "{e}");
+        assert!(!e.contains("same point"), "{e}");
+        let spec = from_world_to_camera(&m(1e6)).unwrap();
+        assert_eq!(spec.look - spec.eye, DVec3::new(0.0, 0.0, -1.0));
+    }
 
     /// A random rotation's matrix (rows x, y, z) and translation give back the eye, forward and
     /// down it was built from; `camera::Camera::world_to_camera` of that pose is the matrix.

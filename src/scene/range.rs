@@ -114,6 +114,26 @@ fn token_col(source: &Path, text: Option<&[u8]>, line: usize, token: usize) -> u
         .map_or(0, |t| text[..t.off].chars().count() + 1)
 }
 
+/// `|v|` without the overflow of squaring: scaled by its largest component first, so that a
+/// vector of 1e300 has length 1e300, not infinity (for messages; the rules use `length`).
+fn distance(v: DVec3) -> f64 {
+    let m = v.abs().max_element();
+    if m == 0.0 || !m.is_finite() {
+        return m;
+    }
+    (v / m).length() * m
+}
+
+/// A distance for a message, `1.000e300`: finite and true, or "more than" f64's largest
+/// number where even the scaled length overflows (points at opposite ends of f64's range).
+fn distance_text(d: f64) -> String {
+    if d.is_finite() {
+        format!("{d:.3e}")
+    } else {
+        format!("more than {:.3e}", f64::MAX)
+    }
+}
+
 /// [`f32_range`]'s rules for one shape.
 pub(crate) fn shape_f32(shape: &Shape, eye: DVec3) -> Result<(), String> {
     // NaN (never expected: inputs are finite) counts as too far.
@@ -129,8 +149,9 @@ pub(crate) fn shape_f32(shape: &Shape, eye: DVec3) -> Result<(), String> {
             let d = (*center - eye).length() + radius;
             if far(d) {
                 return Err(format!(
-                    "sphere reaches {d:.3e} from the camera eye; the limit is \
-                     {MAX_EYE_DISTANCE:e} (f32 arithmetic would overflow)"
+                    "sphere reaches {} from the camera eye; the limit is \
+                     {MAX_EYE_DISTANCE:e} (f32 arithmetic would overflow)",
+                    distance_text(distance(*center - eye) + radius)
                 ));
             }
             Ok(())
@@ -213,9 +234,10 @@ fn polygon_f32_exact<const N: usize>(
         let d = r.length();
         if d.is_nan() || d > MAX_EYE_DISTANCE {
             return Err(format!(
-                "{kw} vertex {} is {d:.3e} from the camera eye; the limit is \
+                "{kw} vertex {} is {} from the camera eye; the limit is \
                  {MAX_EYE_DISTANCE:e} (f32 arithmetic would overflow)",
-                VERTEX_NAMES[k]
+                VERTEX_NAMES[k],
+                distance_text(distance(*r))
             ));
         }
     }
@@ -254,6 +276,32 @@ fn polygon_f32_exact<const N: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A primitive too far away is refused with its true distance, never "inf", even where
+    /// squaring the distance overflows f64.
+    #[test]
+    fn far_primitives_are_named_with_a_finite_distance() {
+        let eye = DVec3::new(0.0, 0.0, 5.0);
+        let sphere = Shape::Sphere {
+            center: DVec3::new(1e300, 0.0, 0.0),
+            radius: 1.0,
+        };
+        let e = shape_f32(&sphere, eye).unwrap_err();
+        assert!(
+            e.starts_with("sphere reaches 1.000e300 from the camera eye"),
+            "{e}"
+        );
+        let far = DVec3::new(0.0, 3e200, 0.0);
+        let tri = Shape::Triangle([far, far + DVec3::X * 1e199, far + DVec3::Z * 1e199]);
+        let e = shape_f32(&tri, eye).unwrap_err();
+        assert!(e.starts_with("triangle vertex A is 3.000e200 from"), "{e}");
+        let ends = Shape::Sphere {
+            center: DVec3::splat(-f64::MAX),
+            radius: 1.0,
+        };
+        let e = shape_f32(&ends, DVec3::splat(f64::MAX)).unwrap_err();
+        assert!(e.contains("reaches more than 1.798e308"), "{e}");
+    }
 
     /// `surely_in_range` accepts only what the exact rules accept, over random triangles and
     /// quads and eyes at scales 1e-15 to 1e15, with eyes pushed near the polygon's plane (down

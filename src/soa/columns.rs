@@ -453,6 +453,7 @@ mod tests {
     #[test]
     fn packed_columns_round_trip_the_f32_records() {
         let scene = Scene {
+            camera_at: None,
             source: "t.sc".into(),
             camera: CameraSpec {
                 eye: DVec3::new(0.0, 0.0, 5.0),

@@ -61,11 +61,11 @@ fn bad_overrides_are_refused_naming_the_flag() {
         ),
         (
             &["--up", "0,0,0"][..],
-            "--up: camera up vector has zero length",
+            "--up 0,0,0: camera up vector has zero length",
         ),
         (
             &["--eye", "0,0,0", "--look", "0,0,0"][..],
-            "--eye, --look: camera eye and look",
+            "--eye 0,0,0 --look 0,0,0: camera eye and look",
         ),
     ] {
         let o = run(

@@ -279,6 +279,7 @@ pub fn translated(scene: &Scene, by: DVec3) -> Scene {
     Scene {
         source: scene.source.clone(),
         camera,
+        camera_at: scene.camera_at,
         shapes,
         warnings: Vec::new(),
     }

@@ -152,6 +152,7 @@ fn window(cam: &Camera) -> impl Iterator<Item = (usize, usize)> {
 /// A scene of one shape seen by `eye` looking at `look`.
 fn one_shape(shape: Shape, eye: DVec3, look: DVec3) -> Scene {
     Scene {
+        camera_at: None,
         source: "reach.sc".into(),
         camera: CameraSpec {
             eye,

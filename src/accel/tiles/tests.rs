@@ -47,6 +47,7 @@ fn scene(seed: u64, eye: DVec3, look: DVec3, fov: f64) -> Scene {
         radius: 20.0,
     });
     Scene {
+        camera_at: None,
         source: "tiles.sc".into(),
         camera: CameraSpec {
             eye,
@@ -261,6 +262,7 @@ fn stores_already_in_screen_order_are_kept() {
     let scattered: Vec<Shape> = (0..200).map(|i| strip[i * 37 % 200]).collect();
     for (shapes, kept) in [(strip, true), (scattered, false)] {
         let scene = Scene {
+            camera_at: None,
             source: "strip.sc".into(),
             camera: CameraSpec {
                 eye,

@@ -27,6 +27,7 @@ fn grazing_scene() -> (Scene, Camera) {
         2,
     );
     let scene = Scene {
+        camera_at: None,
         source: "t.sc".into(),
         camera: CameraSpec {
             eye: DVec3::ZERO,
