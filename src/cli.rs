@@ -243,7 +243,8 @@ fn parse_raw(raw: &[OsString]) -> Result<Command> {
                 // one view: the image always, beside the input by default
                 None => Some(default_output(&view.input, raw)?),
             };
-            let stdout_format = stdout_format(output.as_deref(), typed_output, r.format.as_deref())?;
+            let stdout_format =
+                stdout_format(output.as_deref(), typed_output, r.format.as_deref())?;
             let settings = RenderSettings {
                 view,
                 output,

@@ -205,7 +205,10 @@ fn readme_boundary_bands_are_their_sources() {
     use lanecast::scene::CameraSpec;
     use lanecast::{Camera, experimental::camera::ID_BAND_PIXELS};
     let u = f32::EPSILON as f64 / 2.0;
-    assert_eq!(ID_BAND_PIXELS, 0.125, "README says the id band is an eighth of a pixel");
+    assert_eq!(
+        ID_BAND_PIXELS, 0.125,
+        "README says the id band is an eighth of a pixel"
+    );
     let spec = CameraSpec {
         eye: glam::DVec3::new(0.0, 0.0, 5.0),
         look: glam::DVec3::ZERO,
