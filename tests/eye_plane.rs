@@ -16,9 +16,8 @@ mod common;
 
 use common::*;
 use glam::DVec3;
-use lanecast::experimental::render::{Frame, Options, Renderer};
 use lanecast::scene::{Scene, Shape};
-use lanecast::{Accel, Camera, Kernel, Precision};
+use lanecast::{Accel, Precision};
 
 const W: u32 = 48;
 const H: u32 = 32;
@@ -151,15 +150,6 @@ fn case(rng: &mut Rng, k: usize) -> Case {
     }
 }
 
-fn render(scene: &Scene, camera: &Camera, precision: Precision, accel: Accel) -> Frame<f32> {
-    let options = Options {
-        precision,
-        accel,
-        kernel: Kernel::Packet,
-    };
-    Renderer::new(scene, camera, &options).unwrap().render()
-}
-
 /// Every clear pixel of every method agrees with the independent computation; depths within
 /// 1e-5 relative (f32 alone: 1e-4; the coordinates' rounding moves the plane by up to 1e-8).
 #[test]
@@ -194,7 +184,7 @@ fn polygons_seen_from_near_their_plane_are_drawn_by_every_method() {
         )];
         for precision in Precision::ALL {
             for accel in [Accel::None, Accel::Tiles, Accel::Bvh, Accel::World] {
-                let f = render(&c.scene, &camera, precision, accel);
+                let f = render_packets(&c.scene, &camera, precision, accel);
                 let tol = if precision == Precision::F32 {
                     1e-4
                 } else {
@@ -261,7 +251,7 @@ fn the_reported_floor_and_ground_are_drawn() {
             Accel::Bvh,
             Accel::World,
         ] {
-            let f = render(&floor, &camera, precision, accel);
+            let f = render_packets(&floor, &camera, precision, accel);
             assert!(
                 f.ids.iter().all(|&i| i == 0),
                 "{} {}: {} of {} pixels are not the floor",
@@ -288,7 +278,7 @@ fn the_reported_floor_and_ground_are_drawn() {
         assert!(drawn > 64 * 48 / 2, "half-size {half}: {drawn} pixels");
         for precision in Precision::ALL {
             for accel in [Accel::Auto, Accel::Tiles, Accel::Bvh, Accel::World] {
-                let f = render(&ground, &camera, precision, accel);
+                let f = render_packets(&ground, &camera, precision, accel);
                 let differ = (f.ids.iter().zip(&oracle.ids))
                     .filter(|(a, b)| a != b)
                     .count();

@@ -20,9 +20,9 @@ mod common;
 use common::*;
 use glam::DVec3;
 use lanecast::compare::{UNEXCUSED, classify};
-use lanecast::experimental::render::{Frame, Options, Renderer};
+use lanecast::experimental::render::Frame;
 use lanecast::scene::Scene;
-use lanecast::{Accel, Camera, CameraSpec, Kernel, Precision};
+use lanecast::{Accel, Camera, CameraSpec, Precision};
 use std::path::Path;
 
 /// The bunny, and its size (the diagonal of its box) and centre.
@@ -69,15 +69,6 @@ const SIZES: [(u32, u32); 6] = [
     (65_536, 3),
     (2, 65_536),
 ];
-
-fn render(scene: &Scene, camera: &Camera, precision: Precision, accel: Accel) -> Frame<f32> {
-    let options = Options {
-        precision,
-        accel,
-        kernel: Kernel::Packet,
-    };
-    Renderer::new(scene, camera, &options).unwrap().render()
-}
 
 /// The failures of `got` against the oracle: unexcused mismatches, false hits with no oracle
 /// hit among their eight neighbours, and the largest same-id relative depth error.
@@ -147,7 +138,7 @@ fn views(
             ]
         };
         for &accel in accels {
-            let got = render(&scene, &camera, Precision::Auto, accel);
+            let got = render_packets(&scene, &camera, Precision::Auto, accel);
             let (unexcused, far, depth) = failures(&scene, &camera, &oracle, &got);
             assert!(
                 unexcused == 0 && far == 0 && depth <= 1e-5,
@@ -155,7 +146,7 @@ fn views(
                 accel.name()
             );
         }
-        let got = render(&scene, &camera, Precision::F32, Accel::Auto);
+        let got = render_packets(&scene, &camera, Precision::F32, Accel::Auto);
         let (unexcused, far, depth) = failures(&scene, &camera, &oracle, &got);
         if unexcused > 0 || far > 0 || depth > 1e-5 {
             f32_failed += 1;
@@ -189,4 +180,43 @@ fn telephoto_views_of_every_family_hold_to_the_oracle() {
         18,
     );
     assert!(f32_failed >= 3, "f32 alone failed {f32_failed} of 18 views");
+}
+
+/// The new user's telephoto commands, through `lanecast compare`: the default passes with the
+/// whole view decided in f64, and f32 alone, which draws streaks there, fails with unexcused
+/// mismatches (it once passed, every mismatch excused as a tie or a 1.9e-6 rad edge band);
+/// `scenes/stress/tiny_far.sc` likewise.
+#[test]
+fn compare_fails_f32_and_passes_the_default_on_telephoto_views() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let bunny = [
+        "-i",
+        "scenes/bunny.sc",
+        "--eye",
+        "0,4.7,1e4",
+        "--look",
+        "0,4.7,0",
+        "-fov",
+        "0.0802",
+    ];
+    let tiny = ["-i", "scenes/stress/tiny_far.sc"];
+    for args in [&bunny[..], &tiny[..]] {
+        let auto = run(root, &[&["compare"], args].concat());
+        assert_success(&auto, "compare, auto");
+        assert!(
+            stdout(&auto).contains("in f64 (100.0000%)"),
+            "{}",
+            stdout(&auto)
+        );
+        let f32 = run(
+            root,
+            &[&["compare"], args, &["--precision", "f32"]].concat(),
+        );
+        assert_eq!(f32.status.code(), Some(1), "{}", stdout(&f32));
+        assert!(
+            stderr(&f32).contains("unexcused id mismatch"),
+            "{}",
+            stderr(&f32)
+        );
+    }
 }

@@ -46,25 +46,25 @@ pub(super) fn write(stream: Stream, what: &'static str, text: &str) -> Result<bo
 /// be written is an error, a closed pipe included: the run stops before its outputs rather
 /// than finish with a warning nobody saw.
 pub(super) fn warn(warning: &str) -> Result<()> {
-    let text = format!("lanecast: warning: {warning}\n");
-    match write(Stream::Stderr, "write a warning", &text)? {
-        true => Ok(()),
-        false => Err(Error::io(
-            Stream::Stderr.name(),
-            "write a warning",
-            io::Error::from(io::ErrorKind::BrokenPipe),
-        )),
-    }
+    line("warning", warning)
 }
 
 /// Writes a note (`lanecast: note: ...`) to standard error, as [`warn`] does a warning.
 pub(super) fn note(note: &str) -> Result<()> {
-    let text = format!("lanecast: note: {note}\n");
-    match write(Stream::Stderr, "write a note", &text)? {
+    line("note", note)
+}
+
+/// `lanecast: KIND: TEXT` on standard error; a closed pipe is an error too.
+fn line(kind: &'static str, text: &str) -> Result<()> {
+    let what = match kind {
+        "warning" => "write a warning",
+        _ => "write a note",
+    };
+    match write(Stream::Stderr, what, &format!("lanecast: {kind}: {text}\n"))? {
         true => Ok(()),
         false => Err(Error::io(
             Stream::Stderr.name(),
-            "write a note",
+            what,
             io::Error::from(io::ErrorKind::BrokenPipe),
         )),
     }

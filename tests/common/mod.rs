@@ -288,6 +288,23 @@ pub fn translated(scene: &Scene, by: DVec3) -> Scene {
 /// The offset of the "far from the origin" variants.
 pub const FAR: DVec3 = DVec3::new(1000.0, -1000.0, 1000.0);
 
+/// `scene` seen by `camera` with the packet kernel in `precision`, through `accel`.
+pub fn render_packets(
+    scene: &Scene,
+    camera: &Camera,
+    precision: lanecast::Precision,
+    accel: lanecast::Accel,
+) -> lanecast::Frame<f32> {
+    let options = lanecast::Options {
+        precision,
+        accel,
+        kernel: lanecast::Kernel::Packet,
+    };
+    lanecast::Renderer::new(scene, camera, &options)
+        .unwrap()
+        .render()
+}
+
 /// The camera of `scene` at `w` x `h`, with the scene's lens (fov or intrinsics) or 60 degrees.
 pub fn camera_of(scene: &Scene, w: u32, h: u32) -> Camera {
     Camera::look_at(&scene.camera, w, h).expect("a test scene's camera is valid")
