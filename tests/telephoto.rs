@@ -186,6 +186,7 @@ fn telephoto_views_of_every_family_hold_to_the_oracle() {
 /// whole view decided in f64, and f32 alone, which draws streaks there, fails with unexcused
 /// mismatches (it once passed, every mismatch excused as a tie or a 1.9e-6 rad edge band);
 /// `scenes/stress/tiny_far.sc` likewise.
+#[cfg(feature = "cli")]
 #[test]
 fn compare_fails_f32_and_passes_the_default_on_telephoto_views() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
