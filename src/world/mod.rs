@@ -69,7 +69,8 @@ pub const BAND: usize = 32;
 pub const T_TIGHT: f64 = 0.4e-5;
 
 /// Edge-plane error (radians) below which a polygon's f32 inside test is trusted: inside the
-/// boundary band `compare` excuses (`compare::EDGE_BAND`).
+/// id band `compare` excuses (`Camera::id_band`) of every view `--precision auto` draws in f32
+/// (`render::redecide::f32_resolves`: its id band is at least twice the f32 kernels' 1.1e-6).
 pub const EDGE_TIGHT: f64 = 1.5e-6;
 
 /// How a view is decided: the product's one [`Precision`](crate::Precision).
