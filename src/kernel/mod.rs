@@ -43,6 +43,23 @@ pub fn edge_eps<T: Real>() -> T {
     T::from_f64(8.0) * T::UNIT_ROUNDOFF
 }
 
+/// How far, in radians, the f32 kernels may move a polygon's outline or a sphere's silhouette
+/// across its edge against the f64 oracle's in `camera`'s view: `12u + a` (8u of
+/// [`edge_eps`], 4u of the rounded dot product and normal, and `a`, the angle between a
+/// pixel's f32 and f64 rays, `Camera::direction_error`). Derivation and use:
+/// `render::redecide`'s bounds ("Ids").
+pub fn f32_edge_band(camera: &crate::camera::Camera) -> f64 {
+    12.0 * crate::real::U32 + camera.direction_error()
+}
+
+/// Whether the f32 kernels resolve `camera`'s pixels: their edge band ([`f32_edge_band`])
+/// within half the view's id band (`Camera::id_band`, an eighth of a pixel). `--precision
+/// auto` draws a view that fails this in f64 alone, through every engine (a telephoto view:
+/// under about 0.65 degrees of field of view at 640 pixels wide, 1.9 at 1920).
+pub fn f32_resolves(camera: &crate::camera::Camera) -> bool {
+    2.0 * f32_edge_band(camera) <= camera.id_band()
+}
+
 /// The nearest hit of one ray so far: `id == -1` and `t == inf` when there is none.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Hit<T> {

@@ -76,7 +76,6 @@ mod bounds;
 mod check;
 mod verify;
 pub use bounds::TOLERANCE;
-pub use bounds::f32_resolves;
 use bounds::{BUDGET, Bounds, Trusted, is_sharp};
 use verify::Oracle;
 
@@ -258,7 +257,8 @@ impl<'s> Redecide<'s> {
             mut limits,
             plane_at,
         } = spare;
-        let bounds = Bounds::new(camera.direction_error(), camera.id_band());
+        let sharp_sine = crate::kernel::f32_edge_band(camera) / camera.id_band();
+        let bounds = Bounds::new(camera.direction_error(), sharp_sine);
         let s = &packed.spheres;
         // each primitive's limits written at its id, on all threads (the ids of the stores
         // are distinct: each cell is written once at most)

@@ -67,7 +67,7 @@ pub struct Renderer<'s> {
 enum Job<'s> {
     Setup(Box<Setup>, Option<Box<Redecide<'s>>>),
     /// f64x4 packets (`--precision f64`; `--precision auto` for a view the f32 kernels do not
-    /// resolve, `redecide::f32_resolves`, when the flag is set: every pixel then counts as
+    /// resolve, `kernel::f32_resolves`, when the flag is set: every pixel then counts as
     /// decided again in f64).
     Wide64(Box<Kit64>, bool),
     /// `--accel world`: the prepared scene (shared by every view), the camera, the precision
@@ -161,11 +161,7 @@ impl<'s> Renderer<'s> {
         options: &Options,
         spare: Spare,
     ) -> Renderer<'s> {
-        let precision = match options.precision {
-            // a telephoto view: the f32 kernels' edge band is a sizeable part of a pixel
-            Precision::Auto if !super::redecide::f32_resolves(camera) => Precision::F64,
-            p => p,
-        };
+        let precision = options.precision;
         Renderer {
             width: camera.width as usize,
             height: camera.height as usize,
@@ -218,7 +214,7 @@ impl<'s> Renderer<'s> {
         spare: Spare,
         left_out: Option<&IdSet>,
     ) -> Renderer<'s> {
-        if !super::redecide::f32_resolves(camera) {
+        if !crate::kernel::f32_resolves(camera) {
             // a telephoto view: the f32 kernels' edge band is a sizeable part of a pixel
             return Renderer {
                 width: camera.width as usize,

@@ -70,7 +70,7 @@ pub const T_TIGHT: f64 = 0.4e-5;
 
 /// Edge-plane error (radians) below which a polygon's f32 inside test is trusted: inside the
 /// id band `compare` excuses (`Camera::id_band`) of every view `--precision auto` draws in f32
-/// (`render::redecide::f32_resolves`: its id band is at least twice the f32 kernels' 1.1e-6).
+/// (`kernel::f32_resolves`: its id band is at least twice the f32 kernels' 1.1e-6).
 pub const EDGE_TIGHT: f64 = 1.5e-6;
 
 /// How a view is decided: the product's one [`Precision`](crate::Precision).
@@ -428,6 +428,11 @@ impl World {
         scratch: &mut Scratch,
         spare: Option<Frame<f32>>,
     ) -> (Frame<f32>, Vec<usize>) {
+        let precision = match precision {
+            // a telephoto view: the f32 kernels' edge band is a sizeable part of a pixel
+            Precision::Auto if !crate::kernel::f32_resolves(camera) => Precision::F64,
+            p => p,
+        };
         let view = raster::View::new(camera);
         self.project(&view, scratch);
         self.bin(&view, scratch);

@@ -56,7 +56,7 @@
 //!
 //! An f32 polygon accepts rays up to 8u outside an edge plane (`kernel::edge_eps`), its dot
 //! product and rounded normal err by 4u, and the ray by `a`: its outline moves by at most
-//! `E = 12u + a` radians ([`edge_band`]) across each edge. Where two edges meet at an angle
+//! `E = 12u + a` radians (`kernel::f32_edge_band`) across each edge. Where two edges meet at an angle
 //! `theta` on the sphere of directions, moving both by `E` moves the corner by
 //! `E / sin(theta / 2)` along its bisector: a sliver's sharp tip (a silhouette triangle seen
 //! nearly edge-on, or any triangle through a telephoto lens) reaches many pixels past the true
@@ -67,7 +67,7 @@
 //! decided again in f64 unless the oracle hits it there too. A view whose `E` itself is not
 //! within half the id band (a field of view under about 0.65 degrees at 640 pixels wide, 1.9
 //! at 1920) is not
-//! drawn in f32 at all ([`f32_resolves`]): `auto` runs it in f64.
+//! drawn in f32 at all (`kernel::f32_resolves`): `auto` runs it in f64, through every engine.
 //!
 //! `tests` below check both bounds against the kernels themselves, the f32 kernel along the
 //! f32 ray against the oracle along the f64 ray, on grazing planes and on spheres near their
@@ -98,19 +98,6 @@ pub(super) fn is_sharp(l: [f32; 2]) -> bool {
     l.map(f32::to_bits) == SHARP.map(f32::to_bits)
 }
 
-/// How far, in radians, an f32 polygon's outline or a sphere's silhouette may move across its
-/// edge against the oracle's for `camera` (module comment, "Ids"): `12u + a`.
-pub(super) fn edge_band(camera: &crate::camera::Camera) -> f64 {
-    12.0 * U + camera.direction_error()
-}
-
-/// Whether the f32 kernels resolve `camera`'s pixels: their edge band ([`edge_band`]) within
-/// half the view's id band (`Camera::id_band`). `--precision auto` draws a view that fails
-/// this in f64 alone.
-pub fn f32_resolves(camera: &crate::camera::Camera) -> bool {
-    2.0 * edge_band(camera) <= camera.id_band()
-}
-
 /// The constants of the two bounds for one camera (module comment), in units of u.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Bounds {
@@ -127,11 +114,13 @@ pub(super) struct Bounds {
 
 impl Bounds {
     /// The bounds for rays whose f32 and f64 directions differ by at most `angle` radians
-    /// (`Camera::direction_error`), in a view whose id band is `id_band` radians.
-    pub(super) fn new(angle: f64, id_band: f64) -> Bounds {
+    /// (`Camera::direction_error`), in a view where a polygon with a corner whose
+    /// `sin(theta / 2)` is below `sharp_sine` is sharp: the view's f32 edge band over its id
+    /// band (module comment, "Ids"; 0: none is).
+    pub(super) fn new(angle: f64, sharp_sine: f64) -> Bounds {
         let a = angle / U;
         Bounds {
-            sharp_sine: (12.0 * U + angle) / id_band,
+            sharp_sine,
             poly_a: 2.0 + 3.5,
             poly_b: 4.0 + a,
             sphere_a: 4.0,
@@ -351,7 +340,7 @@ mod tests {
 
     /// [`check`] of the polygon bound for the polygon of constants `k64` through `cam`.
     fn polygon_case<const N: usize>(cam: &Camera, k64: PolyK<f64, N>) -> (f64, usize) {
-        let bounds = Bounds::new(cam.direction_error(), 1.0);
+        let bounds = Bounds::new(cam.direction_error(), 0.0);
         let k32 = k64.cast::<f32>();
         let bound = |t: f64| bounds.polygon_error(k32.p as f64, t);
         check(cam, |d| polygon_x1(&k32, d), |d| polygon_x1(&k64, d), bound)
@@ -392,7 +381,7 @@ mod tests {
 
     #[test]
     fn polygon_limit_is_where_the_bound_meets_the_budget() {
-        let bounds = Bounds::new(7.0 * U, 1.0);
+        let bounds = Bounds::new(7.0 * U, 0.0);
         for p in [1e-3f32, 0.283, 5.0, 1e4] {
             let hi = bounds.polygon(p)[1] as f64;
             assert!(bounds.polygon_error(p as f64, hi) <= BUDGET);
@@ -436,7 +425,7 @@ mod tests {
         for (eye, look, centre, radius) in cases {
             for fov in [20.0, 60.0, 100.0] {
                 let cam = camera(eye, look, fov);
-                let bounds = Bounds::new(cam.direction_error(), 1.0);
+                let bounds = Bounds::new(cam.direction_error(), 0.0);
                 let k64 = SphereK::new(centre, radius, eye);
                 let k32 = k64.cast::<f32>();
                 let (len, r, c) = sphere_inputs(k32.oc, k32.r2, k32.c);
@@ -453,7 +442,7 @@ mod tests {
     /// The division-free test the limits are solved with says what the bound says.
     #[test]
     fn sphere_over_is_the_bound_against_the_budget() {
-        let bounds = Bounds::new(7.0 * U, 1.0);
+        let bounds = Bounds::new(7.0 * U, 0.0);
         // (|oc|, r): outside near and far, a huge sphere close by, the eye inside
         for (len, r) in [
             (6.0, 1.5),
@@ -491,7 +480,7 @@ mod tests {
 
     #[test]
     fn sphere_limits_keep_the_trusted_side() {
-        let bounds = Bounds::new(7.0 * U, 1.0);
+        let bounds = Bounds::new(7.0 * U, 0.0);
         // outside: trusted up to hi; inside: from lo on
         for (oc, r) in [
             ([0.0f32, 0.0, -6.0], 1.5f32),
