@@ -42,8 +42,13 @@
 //! whose bound exceeds 0.9e-5 relative is decided again in f64, which guarantees every depth
 //! within 1e-5 of the oracle's (docs/precision.md; `tests/auto.rs`).
 //! Known to fail: a polygon seen edge-on (every point of it within [`EDGE_ON_SINE`] of the
-//! eye's horizon of its plane: no pixel's worth of area) is never hit, nor is one with an edge whose ends are parallel seen from O (no edge plane:
-//! `tests::collapsed_edge_is_dropped`); the eye within ~u|V - O| of an edge's line gives an ill-conditioned edge plane.
+//! eye's horizon of its plane: no pixel's worth of area) is never hit, nor is one with an edge
+//! whose ends are parallel seen from O (no edge plane: `tests::collapsed_edge_is_dropped`); the
+//! eye within ~u|V - O| of an edge's line gives an ill-conditioned edge plane. Widening every
+//! edge plane by `eps` moves a corner of interior angle `theta` (on the sphere of directions)
+//! by `eps / sin(theta / 2)`: in f32, a sliver's tip can reach pixels past the true one, which
+//! `--precision auto` checks (`render::redecide`'s bounds, "Ids"); in f64 that takes a polygon
+//! seen from within ~1e-12 of its plane and a ray within ~1e-15 rad of that plane.
 
 use crate::kernel::edge_eps;
 use crate::kernel::family::{Family, facing};
