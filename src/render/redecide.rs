@@ -368,8 +368,8 @@ impl<'s> Redecide<'s> {
             v.par_extend(crate::par::repeat_n(u32::MAX, n));
         }
         for (&(kind, i), plane) in polygons.iter().zip(found) {
-            // (a polygon's shape is always one; a sharp one's plane is left all zeros: it is
-            // measured with the oracle's whole kernel, `Redecide::sharp_kept`)
+            // (a polygon's shape is always one; a sharp one's plane is left all zeros: its hits
+            // are decided again, `Redecide::make_oracle`)
             let sharp = is_sharp(unpack(&self.limits[ids[kind][i] as usize]));
             self.plane_at[kind - 1][i] = self.planes[kind - 1].len() as u32;
             self.planes[kind - 1].push(plane.filter(|_| !sharp).unwrap_or_default());

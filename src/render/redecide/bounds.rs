@@ -63,8 +63,10 @@
 //! one. `cos theta = -n_a . n_b` for the corner's edge-plane normals, so
 //! `sin(theta / 2) = sqrt((1 + n_a . n_b) / 2)`. A polygon with a corner that reaches past the
 //! view's id band (`Camera::id_band`, an eighth of a pixel) is *sharp* ([`SHARP`]): every hit
-//! on it is measured with the oracle's own kernel, edges and all, whatever its distance, and
-//! decided again in f64 unless the oracle hits it there too. A view whose `E` itself is not
+//! on it is decided again in f64, whatever its distance. (Measuring each such hit with the
+//! oracle's own kernel for that one polygon, edges and all, re-decided fewer pixels but took
+//! 1.7x the frame on the armadillo at 1080p: its f64 constants, made from the mesh per strip,
+//! cost more than the re-decisions.) A view whose `E` itself is not
 //! within half the id band (a field of view under about 0.65 degrees at 640 pixels wide, 1.9
 //! at 1920) is not
 //! drawn in f32 at all (`kernel::f32_resolves`): `auto` runs it in f64, through every engine.
@@ -88,9 +90,8 @@ pub const TOLERANCE: f64 = 1e-5;
 pub(super) const BUDGET: f64 = 0.9 * TOLERANCE;
 
 /// The limits of a sharp polygon (module comment, "Ids"): no hit on it is trusted at any
-/// distance (a lane it wins carries -0.0), and it is measured with the oracle's whole kernel
-/// (`Redecide::sharp_kept`), so a pixel its f32 corner reached past the true one is decided
-/// again in f64.
+/// distance (a lane it wins carries -0.0), and its measurement always fails
+/// (`Redecide::make_oracle`), so its pixels are decided again in f64.
 pub(super) const SHARP: [f32; 2] = [0.0, -0.0];
 
 /// Whether limits `l` are [`SHARP`]'s, bit for bit.

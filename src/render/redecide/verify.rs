@@ -4,8 +4,6 @@
 //! [`BUDGET`] of its distance.
 
 use super::{BUDGET, ORACLE_SLOTS, Redecide, Walk};
-use crate::kernel::family::{Bounded, Class, Family, Polygon};
-use crate::kernel::polygon::{PolyK, polygon_x1};
 use crate::kernel::sphere::{SphereK, sphere_disc};
 use crate::kernel::wide64::dir_x4d;
 use crate::real::V3;
@@ -21,10 +19,6 @@ use wide::f64x4;
 pub(super) enum Oracle {
     Sphere(SphereK<f64>),
     Plane(Plane),
-    /// A sharp polygon (`bounds`, "Ids"): its f32 edges may accept rays past a corner, so it
-    /// is measured with the oracle's whole kernel, edges and all ([`Redecide::sharp_kept`]),
-    /// from the oracle's constants with the edges padded to four ([`sharp_constants`]).
-    Sharp(PolyK<f64, 4>),
 }
 
 /// A polygon's plane as the measurement takes it: `N . f`, `N . r`, `N . u` (the oracle's unit
@@ -49,44 +43,6 @@ impl Plane {
             hi2: hi * hi,
         }
     }
-}
-
-/// The oracle's constants of a polygon `shape` seen from `eye` (its family's `setup`, bit for
-/// bit: `PolyK::new` with the family's raw normal, `Polygon::NORMAL`), the edges padded to
-/// four by repeating the first, which decides as it did once: [`polygon_x1`] on them is the
-/// family's own f64 kernel. `None` for a shape the oracle never hits, and for a family that is
-/// not a polygon of at most four edges.
-fn sharp_constants(shape: Shape, eye: DVec3) -> Option<PolyK<f64, 4>> {
-    struct Setup(DVec3);
-    impl Visit<Option<PolyK<f64, 4>>> for Setup {
-        fn visit<F: Stored>(self, g: F::Geometry) -> Option<PolyK<f64, 4>> {
-            F::class(AsPolygon::<F>(g, self.0))
-        }
-    }
-    struct AsPolygon<F: Family>(F::Geometry, DVec3);
-    impl<F: Family> Class<F> for AsPolygon<F> {
-        type Out = Option<PolyK<f64, 4>>;
-        fn polygon<const N: usize>(self) -> Self::Out
-        where
-            F: Polygon<N>,
-        {
-            let (v, eye) = (self.0, self.1);
-            let [a, b, c, d] = F::NORMAL;
-            let k = PolyK::<f64, N>::new(&v, (v[a] - v[b]).cross(v[c] - v[d]), eye)?;
-            (N <= 4).then(|| PolyK {
-                n: std::array::from_fn(|i| k.n[if i < N { i } else { 0 }]),
-                nrm: k.nrm,
-                p: k.p,
-            })
-        }
-        fn bounded(self) -> Self::Out
-        where
-            F: Bounded,
-        {
-            None
-        }
-    }
-    visit(shape, Setup(eye))
 }
 
 /// Where a suspect's measurement constants are kept, when the walk found its primitive among
@@ -225,7 +181,7 @@ impl Redecide<'_> {
     /// sees edge-on is not verified.
     pub(super) fn verified_lanes(&self, walk: &Walk, s: &[Suspect; 4], lanes: u32) -> u32 {
         let (mut spheres, mut planes) = (SphereLanes::default(), PlaneLanes::default());
-        let (mut is_sphere, mut is_plane, mut sharp) = (0, 0, 0);
+        let (mut is_sphere, mut is_plane) = (0, 0);
         for (i, h) in s.iter().enumerate().filter(|(i, _)| lanes >> i & 1 == 1) {
             let id = h.id as usize;
             let sphere = match h.known {
@@ -245,10 +201,7 @@ impl Redecide<'_> {
                 _ => None,
             };
             if super::is_sharp(super::unpack(&self.limits[id])) {
-                // measured alone, edges and all
-                if let Some(Oracle::Sharp(k)) = *self.oracle(walk, id) {
-                    sharp |= u32::from(self.sharp_kept(&k, (h.x, h.y), h.t)) << i;
-                }
+                // never kept on its distance: decided again
                 continue;
             }
             if let Some(k) = kept
@@ -263,7 +216,7 @@ impl Redecide<'_> {
         let sx = f64x4::new(s.map(|h| tb.sx[h.x]));
         let sy = f64x4::new(s.map(|h| tb.sy[h.y]));
         let t32 = f64x4::new(s.map(|h| f64::from(h.t)));
-        let mut ok = sharp;
+        let mut ok = 0;
         if is_plane != 0 {
             ok |= plane_within(&planes, (sx, sy), t32).to_bitmask() & is_plane;
         }
@@ -302,12 +255,13 @@ impl Redecide<'_> {
         }
     }
 
-    /// The oracle's constants of primitive `id`, computed; a sharp polygon (`bounds`, "Ids")
-    /// by its id alone, since its hits are never kept on their distance alone.
+    /// The oracle's constants of primitive `id`, computed; `None` for a sharp polygon
+    /// (`bounds`, "Ids"), whose hits are never kept on their distance alone: they are decided
+    /// again in f64.
     #[inline(never)]
     fn make_oracle(&self, id: usize) -> Option<Oracle> {
         if super::is_sharp(super::unpack(&self.limits[id])) {
-            return sharp_constants(self.scene.shapes.get(id), self.camera_eye).map(Oracle::Sharp);
+            return None;
         }
         match self.scene.shapes.get(id) {
             Shape::Sphere { center, radius } => Some(Oracle::Sphere(SphereK::new(
@@ -373,24 +327,8 @@ impl Redecide<'_> {
                 (0..4).for_each(|i| spheres.set(i, &k));
                 sphere_within(&spheres, &dir_x4d(tb, sx, sy), t32).to_bitmask()
             }
-            Some(Oracle::Sharp(k)) => (0..4)
-                .filter(|&i| {
-                    let x = (x0 + i).min(tb.sx.len() - 1);
-                    self.sharp_kept(&k, (x, y), t[i])
-                })
-                .fold(0, |bits, i| bits | 1 << i),
             None => 0,
         }
-    }
-
-    /// Whether the f32 hit `t` of pixel `(x, y)` on the sharp polygon of oracle constants `k`
-    /// is the oracle's: its own f64 kernel (edges and plane, bit for bit) along the pixel's f64
-    /// ray hits it within [`BUDGET`] of `t`. One scalar test, where a re-decision would walk
-    /// every candidate of the pixel.
-    #[inline]
-    pub(super) fn sharp_kept(&self, k: &PolyK<f64, 4>, (x, y): (usize, usize), t: f32) -> bool {
-        let exact = polygon_x1(k, self.tables.dir_x1(x, y));
-        exact.is_some_and(|t64| (f64::from(t) - t64).abs() <= BUDGET * t64)
     }
 }
 
