@@ -416,8 +416,9 @@ test("while a slow frame renders (in the worker), the page's thread stays free: 
     return { ms: p.end - p.t0, pressed: p.pressed - p.t0, ticks: p.ticks, worst: p.worst, engine: window.lanecastApp.engine };
   });
   t.diagnostic(`frame ${r.ms.toFixed(0)} ms, key handled at ${r.pressed.toFixed(0)} ms, ${r.ticks} timer ticks, longest gap ${r.worst.toFixed(1)} ms`);
-  // the frame is slow: the page's thread would have been held all that time
-  assert.ok(r.ms > 100, `the frame took ${r.ms.toFixed(0)} ms: too fast to show anything`);
+  // the frame is slow: the page's thread would have been held all that time (60 ms: above the
+  // 50 ms gap allowed below, so a held thread shows; the frame takes 100 ms or so on 2 cores)
+  assert.ok(r.ms > 60, `the frame took ${r.ms.toFixed(0)} ms: too fast to show anything`);
   assert.ok(r.pressed > 0 && r.pressed < r.ms, `the key press was handled at ${r.pressed} ms, the frame drawn at ${r.ms} ms`);
   // timers kept running all through it: no gap of more than 50 ms
   assert.ok(r.worst < 50, `the page's thread was held ${r.worst.toFixed(0)} ms during a ${r.ms.toFixed(0)} ms frame`);
