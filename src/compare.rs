@@ -137,7 +137,8 @@ pub fn classify(scene: &Scene, camera: &Camera, d: V3<f64>, a: i32, b: i32) -> u
 /// `compare` does with the view's id band, and tests with other bands. A tie needs both
 /// candidates hit by the oracle's kernels, with distances within their depth bounds of each
 /// other ([`tie_rel`]); an edge needs the ray within `band` of either's true boundary
-/// ([`near_boundary`]).
+/// ([`near_boundary`]). It derives the camera's ray error (`Camera::direction_error`) on each
+/// call; [`compare_frame`] derives it once a frame.
 pub fn classify_within(
     scene: &Scene,
     camera: &Camera,
@@ -146,25 +147,44 @@ pub fn classify_within(
     b: i32,
     band: f64,
 ) -> u8 {
-    let eye = camera.eye;
-    let shape = |id: i32| (id >= 0).then(|| scene.shapes.get(id as usize));
-    let (sa, sb) = (shape(a), shape(b));
-    if let (Some(sa), Some(sb)) = (&sa, &sb) {
-        let ta = hit_with_slack(sa, eye, d, 0.0);
-        let tb = hit_with_slack(sb, eye, d, 0.0);
-        if let (Some(ta), Some(tb)) = (ta, tb) {
-            let angle = camera.direction_error();
-            let bound = |s: &Shape, t: f64| tie_rel(plane_distance(s, eye), t, angle) * t;
-            if (ta - tb).abs() <= bound(sa, ta) + bound(sb, tb) {
-                return TIE;
+    let view = Judged {
+        eye: camera.eye,
+        angle: camera.direction_error(),
+        band,
+    };
+    view.class(scene, d, a, b)
+}
+
+/// What classifying a mismatch needs of the view, derived once: the eye, the angle between a
+/// pixel's f32 and f64 rays (`Camera::direction_error`) and the edge band.
+struct Judged {
+    eye: DVec3,
+    angle: f64,
+    band: f64,
+}
+
+impl Judged {
+    /// [`classify_within`] with the view's values.
+    fn class(&self, scene: &Scene, d: V3<f64>, a: i32, b: i32) -> u8 {
+        let (eye, band) = (self.eye, self.band);
+        let shape = |id: i32| (id >= 0).then(|| scene.shapes.get(id as usize));
+        let (sa, sb) = (shape(a), shape(b));
+        if let (Some(sa), Some(sb)) = (&sa, &sb) {
+            let ta = hit_with_slack(sa, eye, d, 0.0);
+            let tb = hit_with_slack(sb, eye, d, 0.0);
+            if let (Some(ta), Some(tb)) = (ta, tb) {
+                let bound = |s: &Shape, t: f64| tie_rel(plane_distance(s, eye), t, self.angle) * t;
+                if (ta - tb).abs() <= bound(sa, ta) + bound(sb, tb) {
+                    return TIE;
+                }
             }
         }
-    }
-    let near = |s: Option<&Shape>| s.is_some_and(|s| near_boundary(s, eye, d, band));
-    if near(sa.as_ref()) || near(sb.as_ref()) {
-        EDGE
-    } else {
-        UNEXCUSED
+        let near = |s: Option<&Shape>| s.is_some_and(|s| near_boundary(s, eye, d, band));
+        if near(sa.as_ref()) || near(sb.as_ref()) {
+            EDGE
+        } else {
+            UNEXCUSED
+        }
     }
 }
 
@@ -247,6 +267,11 @@ pub fn oracle(scene: &Scene, camera: &Camera) -> Frame<f64> {
 pub fn compare_frame(scene: &Scene, camera: &Camera, packet: &Frame<f32>) -> (Report, Frame<f64>) {
     let (w, h) = (camera.width as usize, camera.height as usize);
     let t64 = camera.tables::<f64>(1, 1);
+    let judged = Judged {
+        eye: camera.eye,
+        angle: camera.direction_error(),
+        band: camera.id_band(),
+    };
     let oracle = oracle(scene, camera);
     let mut r = Report {
         pixels: w * h,
@@ -264,7 +289,7 @@ pub fn compare_frame(scene: &Scene, camera: &Camera, packet: &Frame<f32>) -> (Re
             }
             continue;
         }
-        let c = classify(scene, camera, t64.dir_x1(i % w, i / w), a, b);
+        let c = judged.class(scene, t64.dir_x1(i % w, i / w), a, b);
         r.class[i] = c;
         r.mismatches += 1;
         match c {

@@ -138,4 +138,23 @@ mod tests {
         }
         assert_eq!(h8.id.to_array()[0], 0.0);
     }
+
+    /// The thresholds docs/precision.md and README quote: f32 resolves a 640-wide view from
+    /// about 0.65 degrees of field of view up, a 1920-wide one from about 1.9.
+    #[test]
+    fn f32_resolves_from_the_quoted_fields_of_view() {
+        use crate::scene::{CameraSpec, Lens};
+        let at = |fov: f64, w: u32, h: u32| {
+            let spec = CameraSpec {
+                eye: glam::DVec3::new(0.3, 0.2, 5.0),
+                look: glam::DVec3::ZERO,
+                up: glam::DVec3::Y,
+                lens: Some(Lens::Fov(fov)),
+            };
+            f32_resolves(&crate::camera::Camera::look_at(&spec, w, h).unwrap())
+        };
+        assert!(!at(0.6, 640, 480) && at(0.7, 640, 480));
+        assert!(!at(1.8, 1920, 1080) && at(2.0, 1920, 1080));
+        assert!(at(60.0, 640, 480) && !at(0.0802, 640, 480));
+    }
 }
